@@ -1,0 +1,56 @@
+#include "slam/experiment/experiment_config.h"
+
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "slam/core/check.h"
+
+namespace duskmap {
+namespace {
+
+std::string WriteTemp(const std::string& name, const std::string& text) {
+  const auto dir = std::filesystem::temp_directory_path() / "duskmap_experiment_config_test";
+  std::filesystem::create_directories(dir);
+  const auto path = dir / name;
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+TEST(ReadExperimentOptions, ReadsThePaperMatrix) {
+  const ExperimentOptions options =
+      ReadExperimentOptions(std::string(DUSKMAP_SOURCE_DIR) + "/configs/paper_matrix.json");
+  EXPECT_EQ(options.maps.size(), 12u);
+  EXPECT_EQ(options.localization_sessions.size(), 6u);
+  EXPECT_EQ(options.consecutive_pairs.size(), 10u);
+  // Relative dataset paths resolve against the config's folder.
+  EXPECT_EQ(options.dataset_path, std::string(DUSKMAP_SOURCE_DIR) + "/data/sunset");
+}
+
+TEST(ReadExperimentOptions, RejectsUnknownKeyNamingFileAndKey) {
+  const std::string path = WriteTemp(
+      "unknown.json", R"({"dataset": {"path": "d"}, "features": ["SI"], "maps": ["1"],
+                         "localization_sessions": ["A"], "frame_stpe": 2})");
+  try {
+    ReadExperimentOptions(path);
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("frame_stpe"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ReadExperimentOptions, RejectsUnknownFeatureAndBadMap) {
+  EXPECT_THROW(ReadExperimentOptions(WriteTemp(
+                   "feature.json", R"({"dataset": {"path": "d"}, "features": ["XX"],
+                                       "maps": ["1"], "localization_sessions": ["A"]})")),
+               ConfigError);
+  EXPECT_THROW(ReadExperimentOptions(WriteTemp(
+                   "map.json", R"({"dataset": {"path": "d"}, "features": ["SI"],
+                                   "maps": ["1+-2"], "localization_sessions": ["A"]})")),
+               ConfigError);
+}
+
+}  // namespace
+}  // namespace duskmap
