@@ -1,0 +1,40 @@
+// The paper's consecutive-session metrics (paper_results.json,
+// table_gap_distance): the largest distance travelled without a
+// re-localization, and the share of frames re-localized within 55 cm of the
+// previous re-localization (at 1 Hz and 0.55 m/s: "the frame before was
+// re-localized too"). Distances are integrated along the given positions
+// (odometry or ground truth: any frame, only differences are used).
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace duskmap {
+
+struct GapMetricsOptions {
+  double within_m = 0.55;  // a re-localization this close (metres travelled) to the previous one counts
+
+  void Check() const;
+};
+
+struct GapMetrics {
+  // Per frame: metres travelled since the last re-localization (or since the
+  // session start before the first one); 0 at a re-localized frame.
+  std::vector<double> distance_since_last_m;
+  double max_gap_m = 0.0;         // largest distance travelled without re-localization, metres
+  double total_distance_m = 0.0;  // length of the whole path, metres
+  int num_relocalized = 0;
+  // Re-localized frames whose gap to the previous re-localization (or to the
+  // session start, for the first) was <= within_m.
+  int num_within = 0;
+  double within_pct = 0.0;  // 100 * num_within / number of frames
+};
+
+// positions[i] is frame i's position; relocalized[i] whether it re-localized.
+// Throws InputError when the vectors differ in size or a position is not finite.
+GapMetrics ComputeGapMetrics(const std::vector<Eigen::Vector3d>& positions,
+                             const std::vector<bool>& relocalized,
+                             const GapMetricsOptions& options = GapMetricsOptions());
+
+}  // namespace duskmap
