@@ -1,0 +1,98 @@
+#include "slam/experiment/job_runner.h"
+
+#include <atomic>
+#include <fstream>
+#include <mutex>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "slam/core/check.h"
+
+namespace duskmap {
+namespace fs = std::filesystem;
+namespace {
+
+ExperimentPlan SmallPlan() {
+  ExperimentOptions options;
+  options.dataset_path = "d";
+  options.features = {"SI", "OR"};
+  options.maps = {ParseMapSpec("1"), ParseMapSpec("1+2")};
+  options.localization_sessions = {"A", "B"};
+  return PlanExperiment(options, {});
+}
+
+// Records the order of execution, checks that dependencies are complete, and
+// fails the jobs it is told to.
+class RecordingExecutor : public JobExecutor {
+ public:
+  RecordingExecutor(fs::path output_dir, std::set<std::string> failing)
+      : output_dir_(std::move(output_dir)), failing_(std::move(failing)) {}
+  void Execute(const Job& job, const fs::path& job_dir) override {
+    for (const std::string& dependency : job.depends_on) {
+      EXPECT_TRUE(IsJobComplete(output_dir_, dependency)) << job.id << " ran before " << dependency;
+    }
+    if (failing_.count(job.id)) throw InputError("cannot read " + job.id);
+    std::ofstream(job_dir / "result.json") << "{}";
+    std::lock_guard<std::mutex> lock(mutex_);
+    executed_.push_back(job.id);
+  }
+  std::vector<std::string> executed() const { return executed_; }
+
+ private:
+  fs::path output_dir_;
+  std::set<std::string> failing_;
+  std::mutex mutex_;
+  std::vector<std::string> executed_;
+};
+
+fs::path FreshDir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("duskmap_job_runner_" + name);
+  fs::remove_all(dir);
+  return dir;
+}
+
+TEST(RunJobs, RunsEveryJobOnceInParallelRespectingDependencies) {
+  const ExperimentPlan plan = SmallPlan();
+  const fs::path dir = FreshDir("parallel");
+  RecordingExecutor executor(dir, {});
+  int progress_calls = 0;
+  const JobRunSummary summary = RunJobs(plan, executor, {dir, 2, false},
+                                        [&](const JobRunProgress&) { ++progress_calls; });
+  EXPECT_TRUE(summary.ok());
+  EXPECT_EQ(summary.executed, static_cast<int>(plan.jobs.size()));
+  EXPECT_EQ(progress_calls, static_cast<int>(plan.jobs.size()));
+  const auto executed = executor.executed();
+  EXPECT_EQ(std::set<std::string>(executed.begin(), executed.end()).size(), plan.jobs.size());
+  for (const Job& job : plan.jobs) EXPECT_TRUE(IsJobComplete(dir, job.id)) << job.id;
+}
+
+TEST(RunJobs, ResumeSkipsFinishedJobsAndRerunsPartialOnes) {
+  const ExperimentPlan plan = SmallPlan();
+  const fs::path dir = FreshDir("resume");
+  const std::string failing = "map/SI/1+2";
+  {
+    RecordingExecutor first(dir, {failing});
+    const JobRunSummary summary = RunJobs(plan, first, {dir, 1, false});
+    // The map and the two localizations on it fail.
+    EXPECT_EQ(summary.failures.size(), 3u);
+    EXPECT_EQ(summary.failures.front().job_id, failing);
+    EXPECT_NE(summary.failures.front().message.find("cannot read"), std::string::npos);
+    EXPECT_FALSE(IsJobComplete(dir, failing));
+    EXPECT_TRUE(fs::exists(OutputDir(dir, failing).string() + ".partial"));
+  }
+  RecordingExecutor second(dir, {});
+  const JobRunSummary summary = RunJobs(plan, second, {dir, 2, true});
+  EXPECT_TRUE(summary.ok());
+  EXPECT_EQ(summary.executed, 3);
+  EXPECT_EQ(summary.resumed, static_cast<int>(plan.jobs.size()) - 3);
+}
+
+TEST(RunJobs, RejectsInvalidOptions) {
+  RecordingExecutor executor("x", {});
+  EXPECT_THROW(RunJobs(SmallPlan(), executor, {"", 1, false}), ConfigError);
+  EXPECT_THROW(RunJobs(SmallPlan(), executor, {FreshDir("bad"), 0, false}), ConfigError);
+}
+
+}  // namespace
+}  // namespace duskmap
