@@ -36,11 +36,9 @@ nlohmann::json ReadJsonFile(const std::string& path) {
   SLAM_THROW_IF_NOT(ConfigError, in.good()) << path << ": cannot open file";
   std::stringstream buffer;
   buffer << in.rdbuf();
-  try {
-    return nlohmann::json::parse(buffer.str());
-  } catch (const nlohmann::json::parse_error& e) {
-    SLAM_THROW(ConfigError) << path << ": invalid JSON (byte " << e.byte << ")";
-  }
+  nlohmann::json json = nlohmann::json::parse(buffer.str(), nullptr, /*allow_exceptions=*/false);
+  SLAM_THROW_IF_NOT(ConfigError, !json.is_discarded()) << path << ": invalid JSON";
+  return json;
 }
 
 }  // namespace duskmap

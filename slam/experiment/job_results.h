@@ -1,0 +1,72 @@
+// What the jobs of an experiment leave behind for the report: one summary per
+// localization job and per map job, stored as summary.json in the job's
+// folder. Per-frame records stay in the job folder (frames.jsonl) for figures.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace duskmap {
+
+// Mean per-frame time of each stage, milliseconds.
+struct StageTimesMs {
+  double features = 0.0;
+  double loop_closure_detection = 0.0;
+  double proximity_detection = 0.0;
+  double transformation_estimation = 0.0;
+  double optimisation = 0.0;
+  double total = 0.0;
+};
+
+struct LocalizationJobSummary {
+  int num_frames = 0;
+  int num_relocalized = 0;
+  int num_no_candidate = 0;  // frames for which neither LCD nor PD proposed a node
+  // Re-localizations within 0.25 m/2°, 0.5 m/5°, 5 m/10° of ground truth
+  // (all zero and has_ground_truth false when the session has none).
+  bool has_ground_truth = false;
+  std::array<int, 3> num_within_threshold{};
+  int num_wrong = 0;  // re-localized outside the default threshold (0.5 m/5°)
+  double mean_inliers_pct = 0.0;  // mean over re-localized frames of 100 * inliers / features
+  double mean_jump_mm = 0.0;      // mean correction change at re-localizations
+  double mean_features = 0.0;     // features per frame
+  double max_gap_m = 0.0;         // largest distance travelled without re-localization
+  int num_within_55cm = 0;        // re-localized within 0.55 m of the previous one
+  // Session name of the map node each re-localized frame matched, per frame
+  // ("" when not re-localized), for the over-time figure.
+  std::vector<std::string> matched_session_per_frame;
+  StageTimesMs mean_times_ms;
+};
+
+struct MapJobSummary {
+  int num_nodes = 0;
+  std::map<std::string, int> nodes_per_session;
+  std::map<std::string, int> links_per_type;  // "odometry", "loop_closure", ...
+  int num_connected_components = 0;           // sessions groups joined by links
+  int vocabulary_words = 0;
+  size_t descriptor_bytes_per_feature = 0;
+  std::map<std::string, size_t> memory_bytes;  // per component, for localization
+  double ate_mm = -1.0;                        // vs ground truth; < 0 when unknown
+  double mean_features = 0.0;
+  StageTimesMs mean_times_ms;
+  double build_wall_s = 0.0;
+};
+
+void to_json(nlohmann::json& json, const StageTimesMs& times);
+void from_json(const nlohmann::json& json, StageTimesMs& times);
+void to_json(nlohmann::json& json, const LocalizationJobSummary& summary);
+void from_json(const nlohmann::json& json, LocalizationJobSummary& summary);
+void to_json(nlohmann::json& json, const MapJobSummary& summary);
+void from_json(const nlohmann::json& json, MapJobSummary& summary);
+
+// Writes summary.json into job_dir / reads it back; reading throws InputError
+// naming the file when it is missing or malformed.
+void WriteSummary(const std::filesystem::path& job_dir, const nlohmann::json& summary);
+nlohmann::json ReadSummary(const std::filesystem::path& job_dir);
+
+}  // namespace duskmap

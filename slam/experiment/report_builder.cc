@@ -1,0 +1,392 @@
+#include "slam/experiment/report_builder.h"
+
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "slam/core/check.h"
+
+namespace duskmap {
+namespace fs = std::filesystem;
+namespace {
+
+const char* kFullMerge = "1+2+3+4+5+6";
+const char* kReduced = "1-2-3-4-5-6";
+
+// Sums over the localization jobs of one table cell.
+struct CellTotals {
+  int frames = 0;
+  int relocalized = 0;
+  int no_candidate = 0;
+  int correct = 0;
+  int wrong = 0;
+  bool has_ground_truth = false;
+  double inliers_pct_sum = 0.0;  // weighted by re-localized frames
+  double jump_mm_sum = 0.0;      // weighted by re-localized frames
+
+  void Add(const LocalizationJobSummary& s) {
+    frames += s.num_frames;
+    relocalized += s.num_relocalized;
+    no_candidate += s.num_no_candidate;
+    correct += s.num_within_threshold[1];
+    wrong += s.num_wrong;
+    has_ground_truth = has_ground_truth || s.has_ground_truth;
+    inliers_pct_sum += s.mean_inliers_pct * s.num_relocalized;
+    jump_mm_sum += s.mean_jump_mm * s.num_relocalized;
+  }
+  double Pct(int count) const { return frames > 0 ? 100.0 * count / frames : 0.0; }
+};
+
+// Mean of values added, empty when none was.
+struct Mean {
+  double sum = 0.0;
+  int count = 0;
+  void Add(double value) {
+    sum += value;
+    ++count;
+  }
+  std::optional<double> Get() const {
+    return count > 0 ? std::optional<double>(sum / count) : std::nullopt;
+  }
+};
+
+std::vector<std::string> MapRows(const ExperimentOptions& options, bool own_maps_only) {
+  std::vector<std::string> rows;
+  for (const MapSpec& map : options.maps) {
+    if (!own_maps_only || map.BuildsItsOwnMap()) rows.push_back(map.label);
+  }
+  return rows;
+}
+
+bool HasRow(const ExperimentOptions& options, const std::string& label) {
+  for (const MapSpec& map : options.maps) {
+    if (map.label == label) return true;
+  }
+  return false;
+}
+
+void FillPaper(const std::optional<PaperReference>& paper, const std::string& table,
+               const std::string& metric, ReportTable* out) {
+  if (paper) paper->FillRows(table, metric, out);
+}
+
+std::vector<ReportTable> RelocalizationTables(const ExperimentOptions& options,
+                                              const ExperimentPlan& plan,
+                                              const ExperimentResults& results,
+                                              const std::optional<PaperReference>& paper) {
+  const auto rows = MapRows(options, false);
+  std::map<std::pair<std::string, std::string>, CellTotals> totals;  // (row, feature)
+  for (const MatrixCell& cell : plan.cells) {
+    const auto it = results.localization.find(cell.job_id);
+    if (it != results.localization.end()) totals[{cell.row, cell.feature}].Add(it->second);
+  }
+  const std::string suffix = ", cumulative over the localization sessions";
+  ReportTable relocalized("Re-localization (% of frames)" + suffix, rows, options.features);
+  ReportTable inliers("Visual inliers (% of features, re-localized frames)" + suffix, rows,
+                      options.features);
+  ReportTable jumps("Average re-localization jump (mm)" + suffix, rows, options.features);
+  ReportTable correct("Correct re-localizations within 0.5 m/5° (% of frames)" + suffix, rows,
+                      options.features);
+  ReportTable wrong("Wrong re-localizations (count, beyond 0.5 m/5°)" + suffix, rows,
+                    options.features);
+  ReportTable no_candidate("Frames with no candidate at all (%)" + suffix, rows, options.features);
+  for (const auto& [key, t] : totals) {
+    const auto& [row, feature] = key;
+    if (t.frames == 0) continue;
+    relocalized.SetMeasured(row, feature, t.Pct(t.relocalized));
+    no_candidate.SetMeasured(row, feature, t.Pct(t.no_candidate));
+    if (t.relocalized > 0) {
+      inliers.SetMeasured(row, feature, t.inliers_pct_sum / t.relocalized);
+      jumps.SetMeasured(row, feature, t.jump_mm_sum / t.relocalized);
+    }
+    if (t.has_ground_truth) {
+      correct.SetMeasured(row, feature, t.Pct(t.correct));
+      wrong.SetMeasured(row, feature, t.wrong);
+    }
+  }
+  const char* table = "table_cumulative_relocalization";
+  FillPaper(paper, table, "relocalization_pct", &relocalized);
+  FillPaper(paper, table, "visual_inliers_pct", &inliers);
+  FillPaper(paper, table, "jumps_mm", &jumps);
+  return {relocalized, inliers, jumps, correct, wrong, no_candidate};
+}
+
+std::vector<ReportTable> MapTables(const ExperimentOptions& options,
+                                   const ExperimentResults& results,
+                                   const std::optional<PaperReference>& paper) {
+  const auto rows = MapRows(options, true);
+  ReportTable nodes("Graph size (nodes)", rows, options.features);
+  ReportTable memory("Memory needed for localization (MB)", rows, options.features, 1);
+  std::vector<std::string> ate_rows;
+  for (const std::string& row : rows) {
+    if (ParseMapSpec(row).kind != MapKind::kSingle) ate_rows.push_back(row);
+  }
+  ReportTable ate("ATE of the merged maps against ground truth (mm)", ate_rows, options.features);
+  for (const std::string& feature : options.features) {
+    for (const std::string& row : rows) {
+      const auto it = results.maps.find("map/" + feature + "/" + row);
+      if (it == results.maps.end()) continue;
+      const MapJobSummary& s = it->second;
+      nodes.SetMeasured(row, feature, s.num_nodes);
+      size_t bytes = 0;
+      for (const auto& [component, component_bytes] : s.memory_bytes) bytes += component_bytes;
+      memory.SetMeasured(row, feature, bytes / (1024.0 * 1024.0));
+      if (s.ate_mm >= 0.0 && ParseMapSpec(row).kind != MapKind::kSingle) {
+        ate.SetMeasured(row, feature, s.ate_mm);
+      }
+    }
+  }
+  FillPaper(paper, "table_ram_mb", "nodes", &nodes);
+  FillPaper(paper, "table_ram_mb", "ram_mb", &memory);
+  FillPaper(paper, "table_ate_mm", "", &ate);
+  std::vector<ReportTable> tables = {nodes, memory, ate};
+
+  if (HasRow(options, kReduced) && HasRow(options, kFullMerge)) {
+    ReportTable reduced("Graph reduction: nodes left in 1-2-3-4-5-6 and reduction (%)",
+                        {"nodes", "reduction_pct"}, options.features);
+    for (const std::string& feature : options.features) {
+      const auto r = results.maps.find("map/" + feature + "/" + kReduced);
+      const auto f = results.maps.find("map/" + feature + "/" + kFullMerge);
+      if (r == results.maps.end() || f == results.maps.end() || f->second.num_nodes == 0) continue;
+      reduced.SetMeasured("nodes", feature, r->second.num_nodes);
+      reduced.SetMeasured("reduction_pct", feature,
+                          100.0 * (1.0 - double(r->second.num_nodes) / f->second.num_nodes));
+    }
+    FillPaper(paper, "table_reduced_graph", "", &reduced);
+    tables.push_back(reduced);
+  }
+  return tables;
+}
+
+ReportTable TimingTable(const ExperimentOptions& options, const ExperimentPlan& plan,
+                        const ExperimentResults& results,
+                        const std::optional<PaperReference>& paper) {
+  const std::vector<std::string> rows = {
+      "feature_detection_ms", "lcd_single_session_ms", "lcd_1+2+3+4+5+6_ms",
+      "lcd_1-2-3-4-5-6_ms",   "te_ms",                 "features_per_frame",
+      "vocabulary_single_session_k", "vocabulary_1+2+3+4+5+6_k", "vocabulary_1-2-3-4-5-6_k",
+      "descriptor_bytes"};
+  ReportTable table("Per-frame timings (localization, ms), features per frame, vocabulary "
+                    "(thousands of words) and descriptor size (bytes)",
+                    rows, options.features, 1);
+  for (const std::string& feature : options.features) {
+    Mean detection, te, features, lcd_single, lcd_full, lcd_reduced, vocab_single;
+    std::set<std::string> seen;
+    for (const MatrixCell& cell : plan.cells) {
+      if (cell.feature != feature || !seen.insert(cell.job_id).second) continue;
+      const auto it = results.localization.find(cell.job_id);
+      if (it == results.localization.end()) continue;
+      const LocalizationJobSummary& s = it->second;
+      detection.Add(s.mean_times_ms.features);
+      te.Add(s.mean_times_ms.transformation_estimation);
+      features.Add(s.mean_features);
+      const MapSpec used = plan.FindJob(cell.job_id)->map;
+      const double lcd = s.mean_times_ms.loop_closure_detection;
+      if (used.kind == MapKind::kSingle) lcd_single.Add(lcd);
+      if (used.label == kFullMerge) lcd_full.Add(lcd);
+      if (used.label == kReduced) lcd_reduced.Add(lcd);
+    }
+    std::optional<double> vocab_full, vocab_reduced, descriptor_bytes;
+    for (const auto& [id, s] : results.maps) {
+      const Job* job = plan.FindJob(id);
+      if (job == nullptr || job->feature != feature) continue;
+      if (job->map.kind == MapKind::kSingle) vocab_single.Add(s.vocabulary_words / 1000.0);
+      if (job->map.label == kFullMerge) vocab_full = s.vocabulary_words / 1000.0;
+      if (job->map.label == kReduced) vocab_reduced = s.vocabulary_words / 1000.0;
+      descriptor_bytes = static_cast<double>(s.descriptor_bytes_per_feature);
+    }
+    const std::vector<std::pair<std::string, std::optional<double>>> values = {
+        {rows[0], detection.Get()},   {rows[1], lcd_single.Get()}, {rows[2], lcd_full.Get()},
+        {rows[3], lcd_reduced.Get()}, {rows[4], te.Get()},         {rows[5], features.Get()},
+        {rows[6], vocab_single.Get()}, {rows[7], vocab_full},      {rows[8], vocab_reduced},
+        {rows[9], descriptor_bytes}};
+    for (const auto& [row, value] : values) {
+      if (value) table.SetMeasured(row, feature, *value);
+    }
+    if (!paper) continue;
+    const std::string t = "table_timing";
+    const std::vector<std::pair<std::string, std::vector<std::string>>> paper_keys = {
+        {rows[0], {t, "feature_detection_ms"}},
+        {rows[1], {t, "loop_closure_detection_ms", "single-session maps"}},
+        {rows[2], {t, "loop_closure_detection_ms", kFullMerge}},
+        {rows[3], {t, "loop_closure_detection_ms", kReduced}},
+        {rows[4], {t, "transformation_estimation_ms"}},
+        {rows[5], {t, "features_per_frame"}},
+        {rows[6], {t, "vocabulary_size_thousands", "single-session maps"}},
+        {rows[7], {t, "vocabulary_size_thousands", kFullMerge}},
+        {rows[8], {t, "vocabulary_size_thousands", kReduced}}};
+    for (const auto& [row, keys] : paper_keys) {
+      if (const auto value = paper->Value(keys, feature)) table.SetPaper(row, feature, *value);
+    }
+    const auto dims = paper->Value({t, "descriptor_dimension"}, feature);
+    const auto element = paper->Value({t, "descriptor_bytes_per_element"}, feature);
+    if (dims && element) table.SetPaper(rows[9], feature, *dims * *element);
+  }
+  return table;
+}
+
+std::vector<ReportTable> ConsecutiveTables(const ExperimentOptions& options,
+                                           const ExperimentPlan& plan,
+                                           const ExperimentResults& results,
+                                           const std::optional<PaperReference>& paper,
+                                           std::string* csv) {
+  if (plan.consecutive.empty()) return {};
+  std::vector<std::string> rows;
+  for (int gap : options.consecutive_gap_classes_min) rows.push_back(std::to_string(gap) + " min");
+  ReportTable max_gap("Consecutive sessions: largest distance travelled without "
+                      "re-localization (m), worst pair of each gap class",
+                      rows, options.features, 2);
+  ReportTable within("Consecutive sessions: frames re-localized within 55 cm of the previous "
+                     "re-localization (%)",
+                     rows, options.features);
+  std::map<std::pair<std::string, std::string>, std::pair<double, std::pair<int, int>>> acc;
+  std::ostringstream out;
+  out << "feature,map_session,localization_session,gap_min,gap_class_min,max_gap_m,within_55cm_pct\n";
+  for (const ConsecutiveCell& cell : plan.consecutive) {
+    const auto it = results.localization.find(cell.job_id);
+    if (it == results.localization.end() || it->second.num_frames == 0) continue;
+    const LocalizationJobSummary& s = it->second;
+    auto& a = acc[{std::to_string(cell.gap_class_min) + " min", cell.feature}];
+    a.first = std::max(a.first, s.max_gap_m);
+    a.second.first += s.num_within_55cm;
+    a.second.second += s.num_frames;
+    out << cell.feature << "," << cell.map_session << "," << cell.localization_session << ","
+        << cell.gap_min << "," << cell.gap_class_min << "," << s.max_gap_m << ","
+        << 100.0 * s.num_within_55cm / s.num_frames << "\n";
+  }
+  for (const auto& [key, a] : acc) {
+    max_gap.SetMeasured(key.first, key.second, a.first);
+    within.SetMeasured(key.first, key.second, 100.0 * a.second.first / a.second.second);
+  }
+  if (paper) {
+    for (const std::string& row : rows) {
+      for (const std::string& feature : options.features) {
+        if (auto v = paper->Value({"table_gap_distance", row, "max_gap_m"}, feature)) {
+          max_gap.SetPaper(row, feature, *v);
+        }
+        if (auto v = paper->Value({"table_gap_distance", row, "within_55cm_pct"}, feature)) {
+          within.SetPaper(row, feature, *v);
+        }
+      }
+    }
+  }
+  *csv = out.str();
+  return {max_gap, within};
+}
+
+std::string CellsCsv(const ExperimentPlan& plan, const ExperimentResults& results) {
+  std::ostringstream out;
+  out << "feature,row,session,job,frames,relocalized_pct,correct_pct,wrong,no_candidate_pct,"
+         "mean_inliers_pct,mean_jump_mm\n";
+  for (const MatrixCell& cell : plan.cells) {
+    const auto it = results.localization.find(cell.job_id);
+    if (it == results.localization.end() || it->second.num_frames == 0) continue;
+    const LocalizationJobSummary& s = it->second;
+    const double frames = s.num_frames;
+    out << cell.feature << ",\"" << cell.row << "\"," << cell.session << "," << cell.job_id << ","
+        << s.num_frames << "," << 100.0 * s.num_relocalized / frames << ","
+        << (s.has_ground_truth ? 100.0 * s.num_within_threshold[1] / frames : -1.0) << ","
+        << s.num_wrong << "," << 100.0 * s.num_no_candidate / frames << "," << s.mean_inliers_pct
+        << "," << s.mean_jump_mm << "\n";
+  }
+  return out.str();
+}
+
+std::string TimelineCsv(const ExperimentResults& results) {
+  std::ostringstream out;
+  out << "job,frame,matched_session\n";
+  for (const auto& [id, s] : results.localization) {
+    for (size_t i = 0; i < s.matched_session_per_frame.size(); ++i) {
+      out << id << "," << i << "," << s.matched_session_per_frame[i] << "\n";
+    }
+  }
+  return out.str();
+}
+
+std::string FileStem(const std::string& caption) {
+  std::string stem;
+  for (char c : caption) {
+    if (std::isalnum(static_cast<unsigned char>(c))) {
+      stem += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    } else if (!stem.empty() && stem.back() != '_') {
+      stem += '_';
+    }
+    if (stem.size() >= 48) break;
+  }
+  while (!stem.empty() && stem.back() == '_') stem.pop_back();
+  return stem;
+}
+
+void WriteText(const fs::path& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  SLAM_THROW_IF_NOT(InputError, out.good()) << path.string() << ": cannot write";
+}
+
+}  // namespace
+
+ExperimentResults CollectResults(const ExperimentPlan& plan,
+                                 const std::vector<fs::path>& results_dirs) {
+  ExperimentResults results;
+  for (const Job& job : plan.jobs) {
+    if (job.kind == JobKind::kExtract) continue;
+    bool found = false;
+    for (const fs::path& dir : results_dirs) {
+      const fs::path job_dir = dir / "jobs" / job.id;
+      if (!fs::is_directory(job_dir)) continue;
+      const nlohmann::json json = ReadSummary(job_dir);
+      try {
+        if (job.kind == JobKind::kLocalize) {
+          results.localization[job.id] = json.get<LocalizationJobSummary>();
+        } else {
+          results.maps[job.id] = json.get<MapJobSummary>();
+        }
+      } catch (const nlohmann::json::exception& e) {
+        SLAM_THROW(InputError) << (job_dir / "summary.json").string()
+                               << ": malformed job summary (" << e.what() << ")";
+      }
+      found = true;
+      break;
+    }
+    if (!found) results.missing_jobs.push_back(job.id);
+  }
+  return results;
+}
+
+ExperimentReport BuildReport(const ExperimentOptions& options, const ExperimentPlan& plan,
+                             const ExperimentResults& results,
+                             const std::optional<PaperReference>& paper) {
+  ExperimentReport report;
+  if (!options.maps.empty()) {
+    for (auto& t : RelocalizationTables(options, plan, results, paper)) report.tables.push_back(t);
+    for (auto& t : MapTables(options, results, paper)) report.tables.push_back(t);
+    report.tables.push_back(TimingTable(options, plan, results, paper));
+  }
+  for (auto& t : ConsecutiveTables(options, plan, results, paper, &report.consecutive_csv)) {
+    report.tables.push_back(t);
+  }
+  report.cells_csv = CellsCsv(plan, results);
+  report.timeline_csv = TimelineCsv(results);
+  return report;
+}
+
+void WriteReport(const ExperimentReport& report, const fs::path& dir) {
+  std::error_code error;
+  fs::create_directories(dir / "tables", error);
+  SLAM_THROW_IF_NOT(InputError, fs::is_directory(dir / "tables"))
+      << dir.string() << ": cannot create the report folder";
+  std::ostringstream markdown;
+  std::ostringstream latex;
+  for (const ReportTable& table : report.tables) {
+    markdown << table.ToMarkdown() << "\n";
+    latex << table.ToLatex() << "\n";
+    WriteText(dir / "tables" / (FileStem(table.caption()) + ".csv"), table.ToCsv());
+  }
+  WriteText(dir / "tables.md", markdown.str());
+  WriteText(dir / "tables.tex", latex.str());
+  WriteText(dir / "cells.csv", report.cells_csv);
+  WriteText(dir / "timeline.csv", report.timeline_csv);
+  if (!report.consecutive_csv.empty()) WriteText(dir / "consecutive.csv", report.consecutive_csv);
+}
+
+}  // namespace duskmap

@@ -1,0 +1,49 @@
+// Turns the job summaries of a finished (or merged, sharded) run into the
+// paper's tables, each cell beside the paper's value, plus the per-cell data
+// the figures are drawn from.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "slam/experiment/experiment_config.h"
+#include "slam/experiment/job_plan.h"
+#include "slam/experiment/job_results.h"
+#include "slam/experiment/paper_reference.h"
+#include "slam/experiment/report_table.h"
+
+namespace duskmap {
+
+// Summaries found for a plan; a job without a summary (not run yet, failed,
+// or in another shard's folder not merged) leaves its cells empty.
+struct ExperimentResults {
+  std::map<std::string, LocalizationJobSummary> localization;  // by job id
+  std::map<std::string, MapJobSummary> maps;                   // by job id
+  std::vector<std::string> missing_jobs;
+};
+
+// Reads the summaries of `plan`'s jobs from one or more results folders (the
+// first folder holding a job wins). Throws InputError for a malformed summary.
+ExperimentResults CollectResults(const ExperimentPlan& plan,
+                                 const std::vector<std::filesystem::path>& results_dirs);
+
+struct ExperimentReport {
+  std::vector<ReportTable> tables;
+  // One line per matrix cell: feature,row,session,relocalized_pct,... for figures.
+  std::string cells_csv;
+  // One line per frame of each localization job, for the over-time figure.
+  std::string timeline_csv;
+  std::string consecutive_csv;
+};
+
+ExperimentReport BuildReport(const ExperimentOptions& options, const ExperimentPlan& plan,
+                             const ExperimentResults& results,
+                             const std::optional<PaperReference>& paper);
+
+// Writes report.md, tables.tex, one CSV per table and the figure data into
+// `dir` (created when absent).
+void WriteReport(const ExperimentReport& report, const std::filesystem::path& dir);
+
+}  // namespace duskmap

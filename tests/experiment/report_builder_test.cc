@@ -1,0 +1,131 @@
+#include "slam/experiment/report_builder.h"
+
+#include <gtest/gtest.h>
+
+#include "slam/core/check.h"
+#include "slam/experiment/job_runner.h"
+
+namespace duskmap {
+namespace fs = std::filesystem;
+namespace {
+
+ExperimentOptions SmallOptions() {
+  ExperimentOptions options;
+  options.dataset_path = "d";
+  options.features = {"SI", "OR"};
+  for (const char* label : {"1", "6", "1+6", "1|6"}) options.maps.push_back(ParseMapSpec(label));
+  options.localization_sessions = {"A", "F"};
+  options.consecutive_pairs = {{"1", "6"}};
+  return options;
+}
+
+SessionClock Clock() {
+  return {{"1", 16 * 60 + 46}, {"6", 19 * 60 + 35}, {"A", 16 * 60 + 51}, {"F", 19 * 60 + 42}};
+}
+
+// Writes a summary whose numbers are derived from the job id, so every job
+// has distinct, reproducible results.
+class FakeExecutor : public JobExecutor {
+ public:
+  void Execute(const Job& job, const fs::path& job_dir) override {
+    const int h = static_cast<int>(std::hash<std::string>()(job.id) % 50);
+    if (job.kind == JobKind::kLocalize) {
+      LocalizationJobSummary s;
+      s.num_frames = 100;
+      s.num_relocalized = 40 + h;
+      s.has_ground_truth = true;
+      s.num_within_threshold = {30 + h, 38 + h, 40 + h};
+      s.num_wrong = 2;
+      s.mean_inliers_pct = 10 + h / 10.0;
+      s.mean_jump_mm = 30 + h;
+      s.max_gap_m = 1.0 + h / 10.0;
+      s.num_within_55cm = 35 + h;
+      s.matched_session_per_frame.assign(100, job.map.sessions.front());
+      WriteSummary(job_dir, s);
+    } else if (job.kind == JobKind::kBuildMap) {
+      MapJobSummary s;
+      s.num_nodes = 200 * static_cast<int>(job.map.sessions.size());
+      s.vocabulary_words = 40000 + h;
+      s.memory_bytes = {{"descriptors", 1u << 20}, {"graph", 1u << 19}};
+      s.ate_mm = 20 + h;
+      WriteSummary(job_dir, s);
+    }
+  }
+};
+
+fs::path FreshDir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("duskmap_report_" + name);
+  fs::remove_all(dir);
+  return dir;
+}
+
+TEST(BuildReport, AggregatesCellsOverSessionsBesideThePaper) {
+  const ExperimentOptions options = SmallOptions();
+  const ExperimentPlan plan = PlanExperiment(options, Clock());
+  const fs::path dir = FreshDir("single");
+  FakeExecutor executor;
+  ASSERT_TRUE(RunJobs(plan, executor, {dir, 1, false}).ok());
+  const ExperimentResults results = CollectResults(plan, {dir});
+  EXPECT_TRUE(results.missing_jobs.empty());
+  const PaperReference paper =
+      PaperReference::Load(std::string(DUSKMAP_SOURCE_DIR) + "/configs/paper_results.json");
+  const ExperimentReport report = BuildReport(options, plan, results, paper);
+  const ReportTable& relocalized = report.tables.front();
+  const auto a = results.localization.at("localize/SI/1/A");
+  const auto f = results.localization.at("localize/SI/1/F");
+  EXPECT_DOUBLE_EQ(*relocalized.At("1", "SI").measured,
+                   100.0 * (a.num_relocalized + f.num_relocalized) / 200.0);
+  EXPECT_EQ(relocalized.At("1", "SI").paper, 65.0);
+  // The closest-in-time row takes A from map 1 and F from map 6.
+  const auto f6 = results.localization.at("localize/SI/6/F");
+  EXPECT_DOUBLE_EQ(*relocalized.At("1|6", "SI").measured,
+                   100.0 * (a.num_relocalized + f6.num_relocalized) / 200.0);
+  EXPECT_FALSE(report.cells_csv.empty());
+  EXPECT_FALSE(report.consecutive_csv.empty());
+
+  const fs::path out = dir / "report";
+  WriteReport(report, out);
+  EXPECT_TRUE(fs::exists(out / "tables.md"));
+  EXPECT_TRUE(fs::exists(out / "tables.tex"));
+  EXPECT_TRUE(fs::exists(out / "cells.csv"));
+}
+
+TEST(BuildReport, MergedShardsEqualOneUnshardedRun) {
+  const ExperimentOptions options = SmallOptions();
+  const ExperimentPlan plan = PlanExperiment(options, Clock());
+  FakeExecutor executor;
+  const fs::path whole = FreshDir("whole");
+  ASSERT_TRUE(RunJobs(plan, executor, {whole, 1, false}).ok());
+  std::vector<fs::path> shards;
+  for (int i = 0; i < 3; ++i) {
+    shards.push_back(FreshDir("shard" + std::to_string(i)));
+    ASSERT_TRUE(RunJobs(SelectShard(plan, i, 3), executor, {shards.back(), 1, false}).ok());
+  }
+  const ExperimentReport one = BuildReport(options, plan, CollectResults(plan, {whole}), {});
+  const ExperimentResults merged_results = CollectResults(plan, shards);
+  EXPECT_TRUE(merged_results.missing_jobs.empty());
+  const ExperimentReport merged = BuildReport(options, plan, merged_results, {});
+  ASSERT_EQ(one.tables.size(), merged.tables.size());
+  for (size_t i = 0; i < one.tables.size(); ++i) {
+    EXPECT_EQ(one.tables[i].ToMarkdown(), merged.tables[i].ToMarkdown());
+  }
+  EXPECT_EQ(one.cells_csv, merged.cells_csv);
+}
+
+TEST(CollectResults, MalformedSummaryNamesTheFile) {
+  const ExperimentOptions options = SmallOptions();
+  const ExperimentPlan plan = PlanExperiment(options, Clock());
+  const fs::path dir = FreshDir("malformed");
+  const fs::path job_dir = OutputDir(dir, "map/SI/1");
+  fs::create_directories(job_dir);
+  WriteSummary(job_dir, nlohmann::json{{"num_nodes", "many"}});
+  try {
+    CollectResults(plan, {dir});
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("map/SI/1/summary.json"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace duskmap
