@@ -79,8 +79,9 @@ std::string ReportTable::ToMarkdown() const {
   for (size_t c = 0; c < columns_.size(); ++c) out << " ---: |";
   out << "\n";
   for (size_t r = 0; r < rows_.size(); ++r) {
-    out << "| " << (rows_[r].find('|') == std::string::npos ? rows_[r] : "`" + rows_[r] + "`")
-        << " |";
+    std::string label;  // a '|' inside a cell must be escaped in Markdown tables
+    for (char c : rows_[r]) label += c == '|' ? std::string("\\|") : std::string(1, c);
+    out << "| " << label << " |";
     for (size_t c = 0; c < columns_.size(); ++c) {
       out << " " << FormatCell(cells_[r * columns_.size() + c], false) << " |";
     }
