@@ -1,0 +1,189 @@
+#!/usr/bin/python3
+"""Draws the report figures of a duskmap run from the CSV files `duskmap report` writes.
+
+Usage: plot_report.py REPORT_DIR [--jobs-dir RESULTS_DIR/jobs]
+
+Writes into REPORT_DIR/figures/:
+  relocalization_single_<F>.png   single-session maps x localization sessions, per feature
+  relocalization_multi_<F>.png    multi-session maps x localization sessions, per feature
+  relocalization_over_time_<F>.png  per localization session, the mapping session matched
+  consecutive.png                 consecutive-session re-localization (map session x later session)
+  merged_graph_<F>.png            top view of a merged map's optimised graph over ground truth
+"""
+import argparse
+import csv
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def read_csv(path):
+    if not os.path.exists(path):
+        return []
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def ordered(values):
+    seen = []
+    for v in values:
+        if v not in seen:
+            seen.append(v)
+    return seen
+
+
+def heat_map(matrix, rows, cols, title, path, vmax=100.0, fmt="{:.0f}"):
+    fig, ax = plt.subplots(figsize=(max(5.0, 1.5 + 0.7 * len(cols)), 1.4 + 0.45 * len(rows)))
+    image = ax.imshow(matrix, cmap="viridis", vmin=0.0, vmax=vmax, aspect="auto")
+    ax.set_xticks(range(len(cols)), cols)
+    ax.set_yticks(range(len(rows)), rows)
+    for r, row in enumerate(matrix):
+        for c, value in enumerate(row):
+            if value == value:  # not NaN
+                ax.text(c, r, fmt.format(value), ha="center", va="center",
+                        color="white" if value < 0.6 * vmax else "black", fontsize=8)
+    ax.set_title(title, fontsize=8, wrap=True)
+    fig.colorbar(image, ax=ax, fraction=0.046)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def relocalization_matrices(cells, out_dir):
+    written = []
+    for feature in ordered(c["feature"] for c in cells):
+        mine = [c for c in cells if c["feature"] == feature]
+        sessions = ordered(c["session"] for c in mine)
+        for kind, keep in (("single", lambda r: all(ch not in r for ch in "+-|")),
+                           ("multi", lambda r: any(ch in r for ch in "+-|"))):
+            rows = ordered(c["row"] for c in mine if keep(c["row"]))
+            if not rows:
+                continue
+            value = {(c["row"], c["session"]): float(c["relocalized_pct"]) for c in mine}
+            matrix = [[value.get((r, s), float("nan")) for s in sessions] for r in rows]
+            path = os.path.join(out_dir, f"relocalization_{kind}_{feature}.png")
+            heat_map(matrix, rows, sessions,
+                     f"{feature}: re-localized frames (%), {kind}-session maps", path)
+            written.append(path)
+    return written
+
+
+def relocalization_over_time(cells, timeline, out_dir):
+    written = []
+    by_job = {}
+    for t in timeline:
+        by_job.setdefault(t["job"], []).append(t)
+    for feature in ordered(c["feature"] for c in cells):
+        rows = [c for c in cells if c["feature"] == feature and c["row"].count("+") >= 1]
+        if not rows:
+            continue
+        row = max(ordered(c["row"] for c in rows), key=lambda r: r.count("+"))
+        mine = [c for c in rows if c["row"] == row]
+        sessions = ordered(t["matched_session"] for c in mine for t in by_job.get(c["job"], [])
+                           if t["matched_session"])
+        colors = {s: plt.cm.tab10(i % 10) for i, s in enumerate(sessions)}
+        fig, ax = plt.subplots(figsize=(9, 0.5 + 0.4 * len(mine)))
+        for y, cell in enumerate(mine):
+            for t in by_job.get(cell["job"], []):
+                if t["matched_session"]:
+                    ax.scatter(int(t["frame"]), y, s=6, color=colors[t["matched_session"]])
+        ax.set_yticks(range(len(mine)), [c["session"] for c in mine])
+        ax.set_xlabel("frame")
+        ax.set_title(f"{feature} on map {row}: mapping session matched at each re-localization",
+                     fontsize=9)
+        handles = [plt.Line2D([], [], marker="o", linestyle="", color=colors[s], label=s)
+                   for s in sessions]
+        ax.legend(handles=handles, fontsize=7, loc="upper right", ncol=len(sessions))
+        fig.tight_layout()
+        path = os.path.join(out_dir, f"relocalization_over_time_{feature}.png")
+        fig.savefig(path, dpi=110)
+        plt.close(fig)
+        written.append(path)
+    return written
+
+
+def consecutive_matrix(rows, out_dir):
+    if not rows:
+        return []
+    written = []
+    for feature in ordered(r["feature"] for r in rows):
+        mine = [r for r in rows if r["feature"] == feature]
+        maps = ordered(r["map_session"] for r in mine)
+        later = ordered(r["localization_session"] for r in mine)
+        value = {(r["map_session"], r["localization_session"]): float(r["within_55cm_pct"])
+                 for r in mine}
+        matrix = [[value.get((m, s), float("nan")) for s in later] for m in maps]
+        path = os.path.join(out_dir, f"consecutive_{feature}.png")
+        heat_map(matrix, maps, later,
+                 f"{feature}: frames re-localized within 55 cm (%), map session x later session",
+                 path)
+        written.append(path)
+    return written
+
+
+def merged_graphs(jobs_dir, out_dir):
+    written = []
+    maps_dir = os.path.join(jobs_dir, "map")
+    if not os.path.isdir(maps_dir):
+        return written
+    for feature in sorted(os.listdir(maps_dir)):
+        labels = [m for m in os.listdir(os.path.join(maps_dir, feature)) if "+" in m]
+        if not labels:
+            continue
+        label = max(labels, key=lambda m: m.count("+"))
+        nodes = read_csv(os.path.join(maps_dir, feature, label, "graph.csv"))
+        if not nodes:
+            continue
+        fig, ax = plt.subplots(figsize=(6, 6))
+        has_truth = all(n.get("truth_x", "") not in ("", "nan") for n in nodes)
+        if has_truth:
+            ax.plot([float(n["truth_x"]) for n in nodes], [float(n["truth_y"]) for n in nodes],
+                    ".", color="0.7", markersize=3, label="ground truth")
+        for i, session in enumerate(ordered(n["session"] for n in nodes)):
+            mine = [n for n in nodes if n["session"] == session]
+            ax.plot([float(n["x"]) for n in mine], [float(n["y"]) for n in mine], "-",
+                    linewidth=0.8, color=plt.cm.tab10(i % 10), label=f"session {session}")
+        ax.set_aspect("equal")
+        ax.set_xlabel("x (m)")
+        ax.set_ylabel("y (m)")
+        ax.legend(fontsize=7)
+        ax.set_title(f"{feature}: optimised graph of map {label}", fontsize=9)
+        fig.tight_layout()
+        path = os.path.join(out_dir, f"merged_graph_{feature}.png")
+        fig.savefig(path, dpi=110)
+        plt.close(fig)
+        written.append(path)
+    return written
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("report_dir")
+    parser.add_argument("--jobs-dir", help="the run's jobs/ folder, for the merged-graph figure")
+    args = parser.parse_args()
+    cells_path = os.path.join(args.report_dir, "cells.csv")
+    if not os.path.exists(cells_path):
+        print(f"plot_report.py: error: {cells_path}: missing (run `duskmap report` first)",
+              file=sys.stderr)
+        return 1
+    out_dir = os.path.join(args.report_dir, "figures")
+    os.makedirs(out_dir, exist_ok=True)
+    cells = read_csv(cells_path)
+    written = relocalization_matrices(cells, out_dir)
+    written += relocalization_over_time(cells, read_csv(os.path.join(args.report_dir,
+                                                                     "timeline.csv")), out_dir)
+    written += consecutive_matrix(read_csv(os.path.join(args.report_dir, "consecutive.csv")),
+                                  out_dir)
+    if args.jobs_dir:
+        written += merged_graphs(args.jobs_dir, out_dir)
+    for path in written:
+        print(path)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
