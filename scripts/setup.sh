@@ -7,7 +7,7 @@ PACKAGES=(
   libopencv-dev libeigen3-dev libflann-dev libceres-dev
   nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
   libsqlite3-dev libcli11-dev
-  python3 python3-matplotlib python3-numpy
+  python3 python3-matplotlib python3-numpy python3-onnx
 )
 
 missing=()

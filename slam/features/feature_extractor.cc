@@ -1,0 +1,113 @@
+#include "slam/features/feature_extractor.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include <opencv2/imgproc.hpp>
+
+#include "slam/core/check.h"
+
+namespace duskmap {
+namespace {
+
+void AttachPoints(const cv::Mat& depth_m, const PinholeCamera* camera, double max_depth_m,
+                  FrameFeatures* features) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  features->points_in_camera.assign(features->size(), Eigen::Vector3f(nan, nan, nan));
+  if (depth_m.empty()) return;
+  for (size_t i = 0; i < features->size(); ++i) {
+    const cv::Point2f& pt = features->keypoints[i].pt;
+    const int u = static_cast<int>(std::lround(pt.x));
+    const int v = static_cast<int>(std::lround(pt.y));
+    if (u < 0 || v < 0 || u >= depth_m.cols || v >= depth_m.rows) continue;
+    const float z = depth_m.at<float>(v, u);
+    if (!std::isfinite(z) || z <= 0.0f) continue;
+    if (max_depth_m > 0.0 && z > max_depth_m) continue;
+    features->points_in_camera[i] = camera->Unproject(pt.x, pt.y, z).cast<float>();
+  }
+}
+
+}  // namespace
+
+FeatureExtractor::FeatureExtractor(int max_features, double max_depth_m)
+    : max_features_(max_features), max_depth_m_(max_depth_m) {
+  SLAM_THROW_IF_NOT(ConfigError, max_features >= 1)
+      << "features.max_features: must be >= 1, got " << max_features;
+}
+
+cv::Mat ToGray8(const cv::Mat& image) {
+  SLAM_THROW_IF_NOT(InputError, image.depth() == CV_8U)
+      << "feature extraction: image must be 8-bit, got depth code " << image.depth()
+      << " (convert 16-bit or float images to 8-bit first)";
+  cv::Mat gray;
+  switch (image.channels()) {
+    case 1: gray = image; break;
+    case 3: cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY); break;
+    case 4: cv::cvtColor(image, gray, cv::COLOR_BGRA2GRAY); break;
+    default:
+      SLAM_THROW(InputError) << "feature extraction: image must have 1, 3 or 4 channels, got "
+                             << image.channels();
+  }
+  return gray;
+}
+
+FrameFeatures FeatureExtractor::Extract(const cv::Mat& image, const cv::Mat& depth_m,
+                                        const PinholeCamera* camera) const {
+  FrameFeatures features;
+  features.kind = kind();
+  if (!depth_m.empty()) {
+    SLAM_THROW_IF_NOT(InputError, depth_m.type() == CV_32FC1)
+        << "feature extraction: depth must be CV_32FC1 metres, got type code " << depth_m.type();
+    SLAM_THROW_IF_NOT(InputError, depth_m.size() == image.size())
+        << "feature extraction: depth is " << depth_m.cols << "x" << depth_m.rows
+        << " but the image is " << image.cols << "x" << image.rows;
+    SLAM_THROW_IF_NOT(InputError, camera != nullptr && camera->IsValid() &&
+                                      camera->width == image.cols && camera->height == image.rows)
+        << "feature extraction: depth given without a valid camera of the image's size";
+  }
+  if (image.empty()) return features;
+  const cv::Mat gray = ToGray8(image);
+  DetectAndDescribe(gray, &features.keypoints, &features.descriptors);
+  if (features.keypoints.empty()) {
+    features.descriptors.release();
+  } else {
+    SLAM_CHECK(features.descriptors.rows == static_cast<int>(features.keypoints.size()));
+    KeepStrongest(max_features_, &features.keypoints, &features.descriptors);
+  }
+  AttachPoints(depth_m, camera, max_depth_m_, &features);
+  return features;
+}
+
+void KeepStrongest(int max_count, std::vector<cv::KeyPoint>* keypoints, cv::Mat* descriptors) {
+  const size_t n = keypoints->size();
+  SLAM_CHECK(descriptors->empty() || descriptors->rows == static_cast<int>(n));
+  std::vector<int> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return std::abs((*keypoints)[a].response) > std::abs((*keypoints)[b].response);
+  });
+  const size_t kept = std::min(n, static_cast<size_t>(std::max(max_count, 0)));
+  bool identity = kept == n;
+  for (size_t i = 0; i < kept && identity; ++i) identity = order[i] == static_cast<int>(i);
+  if (identity) return;
+  std::vector<cv::KeyPoint> sorted(kept);
+  cv::Mat sorted_descriptors;
+  if (!descriptors->empty()) {
+    sorted_descriptors.create(static_cast<int>(kept), descriptors->cols, descriptors->type());
+  }
+  for (size_t i = 0; i < kept; ++i) {
+    sorted[i] = (*keypoints)[order[i]];
+    if (!descriptors->empty()) descriptors->row(order[i]).copyTo(sorted_descriptors.row(i));
+  }
+  *keypoints = std::move(sorted);
+  *descriptors = sorted_descriptors;
+}
+
+cv::Mat VocabularyDescriptors(const FrameFeatures& features, int vocabulary_features) {
+  const int rows = std::min(features.descriptors.rows, std::max(vocabulary_features, 0));
+  return features.descriptors.rowRange(0, rows);
+}
+
+}  // namespace duskmap

@@ -1,0 +1,61 @@
+// The FeatureExtractor interface: image (+ optional registered depth) in,
+// FrameFeatures out — at most max_features keypoints, strongest response
+// first, one descriptor row each, a 3D point per keypoint (NaN without depth).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "slam/core/camera.h"
+#include "slam/features/feature_options.h"
+#include "slam/features/frame_features.h"
+
+namespace duskmap {
+
+class FeatureExtractor {
+ public:
+  explicit FeatureExtractor(int max_features, double max_depth_m = 0.0);
+  virtual ~FeatureExtractor() = default;
+
+  virtual std::string name() const = 0;
+  virtual DescriptorKind kind() const = 0;
+  int max_features() const { return max_features_; }
+
+  // `image`: 8-bit gray, BGR or BGRA (other depths throw InputError). An empty
+  // image, or one too small or too flat for the detector, gives no features.
+  // `depth_m`: empty, or CV_32F metres of the image's size (0/NaN = no depth);
+  // with depth, `camera` must be valid and of the image's size.
+  FrameFeatures Extract(const cv::Mat& image, const cv::Mat& depth_m = cv::Mat(),
+                        const PinholeCamera* camera = nullptr) const;
+
+ protected:
+  // Detects and describes on an 8-bit single-channel, non-empty image. May
+  // return more than max_features (Extract keeps the strongest) and in any
+  // order; descriptors must have one row per keypoint (or be empty when there
+  // are no keypoints).
+  virtual void DetectAndDescribe(const cv::Mat& gray, std::vector<cv::KeyPoint>* keypoints,
+                                 cv::Mat* descriptors) const = 0;
+
+ private:
+  int max_features_;
+  double max_depth_m_;
+};
+
+// Converts 8-bit gray/BGR/BGRA to 8-bit gray; throws InputError otherwise.
+cv::Mat ToGray8(const cv::Mat& image);
+
+// Sorts keypoints by |response| descending (stable: ties keep input order),
+// keeps at most `max_count` and reorders the descriptor rows to match.
+void KeepStrongest(int max_count, std::vector<cv::KeyPoint>* keypoints, cv::Mat* descriptors);
+
+// The descriptors quantized into the vocabulary: the first
+// min(size, vocabulary_features) rows (Kp/MaxFeatures), a view, not a copy.
+cv::Mat VocabularyDescriptors(const FrameFeatures& features, int vocabulary_features);
+
+// Builds the extractor named by options.type (see FeatureTypeNames()).
+std::unique_ptr<FeatureExtractor> CreateFeatureExtractor(const FeatureOptions& options);
+
+}  // namespace duskmap

@@ -1,0 +1,209 @@
+#include "slam/features/feature_options.h"
+
+#include <algorithm>
+
+namespace duskmap {
+namespace {
+
+#define FEATURE_OPTION_CHECK(cond, name) \
+  SLAM_THROW_IF_NOT(ConfigError, cond) << "features." << name << ": must satisfy " #cond
+
+void ReadSurf(JsonFields f, SurfOptions* o) {
+  f.Read("hessian_threshold", &o->hessian_threshold);
+  f.Read("octaves", &o->octaves);
+  f.Read("octave_layers", &o->octave_layers);
+  f.Read("extended", &o->extended);
+  f.Read("upright", &o->upright);
+  f.RejectUnknown();
+}
+void ReadSift(JsonFields f, SiftOptions* o) {
+  f.Read("octave_layers", &o->octave_layers);
+  f.Read("contrast_threshold", &o->contrast_threshold);
+  f.Read("edge_threshold", &o->edge_threshold);
+  f.Read("sigma", &o->sigma);
+  f.Read("root_sift", &o->root_sift);
+  f.RejectUnknown();
+}
+void ReadOrb(JsonFields f, OrbOptions* o) {
+  f.Read("scale_factor", &o->scale_factor);
+  f.Read("levels", &o->levels);
+  f.Read("edge_threshold", &o->edge_threshold);
+  f.Read("patch_size", &o->patch_size);
+  f.Read("fast_threshold", &o->fast_threshold);
+  f.RejectUnknown();
+}
+void ReadBrisk(JsonFields f, BriskOptions* o) {
+  f.Read("threshold", &o->threshold);
+  f.Read("octaves", &o->octaves);
+  f.Read("pattern_scale", &o->pattern_scale);
+  f.RejectUnknown();
+}
+void ReadKaze(JsonFields f, KazeOptions* o) {
+  f.Read("extended", &o->extended);
+  f.Read("upright", &o->upright);
+  f.Read("threshold", &o->threshold);
+  f.Read("octaves", &o->octaves);
+  f.Read("octave_layers", &o->octave_layers);
+  f.RejectUnknown();
+}
+void ReadAkaze(JsonFields f, AkazeOptions* o) {
+  f.Read("threshold", &o->threshold);
+  f.Read("octaves", &o->octaves);
+  f.Read("octave_layers", &o->octave_layers);
+  f.RejectUnknown();
+}
+void ReadGftt(JsonFields f, GfttOptions* o) {
+  f.Read("quality_level", &o->quality_level);
+  f.Read("min_distance_px", &o->min_distance_px);
+  f.Read("block_size", &o->block_size);
+  f.RejectUnknown();
+}
+void ReadFast(JsonFields f, FastOptions* o) {
+  f.Read("threshold", &o->threshold);
+  f.RejectUnknown();
+}
+void ReadBrief(JsonFields f, BriefOptions* o) {
+  f.Read("bytes", &o->bytes);
+  f.Read("patch_size_px", &o->patch_size_px);
+  f.Read("smooth_sigma_px", &o->smooth_sigma_px);
+  f.Read("pattern_seed", &o->pattern_seed);
+  f.RejectUnknown();
+}
+void ReadDaisy(JsonFields f, DaisyOptions* o) {
+  f.Read("radius_px", &o->radius_px);
+  f.Read("rings", &o->rings);
+  f.Read("ring_points", &o->ring_points);
+  f.Read("orientations", &o->orientations);
+  f.Read("normalize", &o->normalize);
+  f.Read("use_orientation", &o->use_orientation);
+  f.RejectUnknown();
+}
+void ReadFreak(JsonFields f, FreakOptions* o) {
+  f.Read("detector", &o->detector);
+  f.Read("orientation_normalized", &o->orientation_normalized);
+  f.Read("scale_normalized", &o->scale_normalized);
+  f.Read("pattern_scale", &o->pattern_scale);
+  f.RejectUnknown();
+}
+void ReadSuperPoint(JsonFields f, SuperPointOptions* o) {
+  f.Read("model_path", &o->model_path);
+  f.Read("threshold", &o->threshold);
+  f.Read("nms_radius_px", &o->nms_radius_px);
+  f.Read("border_px", &o->border_px);
+  f.RejectUnknown();
+}
+
+}  // namespace
+
+void SurfOptions::Check() const {
+  FEATURE_OPTION_CHECK(hessian_threshold >= 0.0, "surf.hessian_threshold");
+  FEATURE_OPTION_CHECK(octaves >= 1 && octaves <= 6, "surf.octaves");
+  FEATURE_OPTION_CHECK(octave_layers >= 1 && octave_layers <= 8, "surf.octave_layers");
+}
+void SiftOptions::Check() const {
+  FEATURE_OPTION_CHECK(octave_layers >= 1, "sift.octave_layers");
+  FEATURE_OPTION_CHECK(contrast_threshold >= 0.0, "sift.contrast_threshold");
+  FEATURE_OPTION_CHECK(edge_threshold > 0.0, "sift.edge_threshold");
+  FEATURE_OPTION_CHECK(sigma > 0.0, "sift.sigma");
+}
+void OrbOptions::Check() const {
+  FEATURE_OPTION_CHECK(scale_factor > 1.0, "orb.scale_factor");
+  FEATURE_OPTION_CHECK(levels >= 1, "orb.levels");
+  FEATURE_OPTION_CHECK(edge_threshold >= 0, "orb.edge_threshold");
+  FEATURE_OPTION_CHECK(patch_size >= 2, "orb.patch_size");
+  FEATURE_OPTION_CHECK(fast_threshold >= 1, "orb.fast_threshold");
+}
+void BriskOptions::Check() const {
+  FEATURE_OPTION_CHECK(threshold >= 1, "brisk.threshold");
+  FEATURE_OPTION_CHECK(octaves >= 0, "brisk.octaves");
+  FEATURE_OPTION_CHECK(pattern_scale > 0.0, "brisk.pattern_scale");
+}
+void KazeOptions::Check() const {
+  FEATURE_OPTION_CHECK(threshold > 0.0, "kaze.threshold");
+  FEATURE_OPTION_CHECK(octaves >= 1, "kaze.octaves");
+  FEATURE_OPTION_CHECK(octave_layers >= 1, "kaze.octave_layers");
+}
+void AkazeOptions::Check() const {
+  FEATURE_OPTION_CHECK(threshold > 0.0, "akaze.threshold");
+  FEATURE_OPTION_CHECK(octaves >= 1, "akaze.octaves");
+  FEATURE_OPTION_CHECK(octave_layers >= 1, "akaze.octave_layers");
+}
+void GfttOptions::Check() const {
+  FEATURE_OPTION_CHECK(quality_level > 0.0 && quality_level < 1.0, "gftt.quality_level");
+  FEATURE_OPTION_CHECK(min_distance_px >= 0.0, "gftt.min_distance_px");
+  FEATURE_OPTION_CHECK(block_size >= 2, "gftt.block_size");
+}
+void FastOptions::Check() const { FEATURE_OPTION_CHECK(threshold >= 1, "fast.threshold"); }
+void BriefOptions::Check() const {
+  FEATURE_OPTION_CHECK(bytes == 16 || bytes == 32 || bytes == 64, "brief.bytes");
+  FEATURE_OPTION_CHECK(patch_size_px >= 8 && patch_size_px <= 128, "brief.patch_size_px");
+  FEATURE_OPTION_CHECK(smooth_sigma_px >= 0.0, "brief.smooth_sigma_px");
+}
+void DaisyOptions::Check() const {
+  FEATURE_OPTION_CHECK(radius_px > 0.0, "daisy.radius_px");
+  FEATURE_OPTION_CHECK(rings >= 1 && rings <= 8, "daisy.rings");
+  FEATURE_OPTION_CHECK(ring_points >= 1 && ring_points <= 32, "daisy.ring_points");
+  FEATURE_OPTION_CHECK(orientations >= 2 && orientations <= 32, "daisy.orientations");
+}
+void FreakOptions::Check() const {
+  FEATURE_OPTION_CHECK(detector == "gftt" || detector == "fast", "freak.detector");
+  FEATURE_OPTION_CHECK(pattern_scale > 0.0, "freak.pattern_scale");
+}
+void SuperPointOptions::Check() const {
+  FEATURE_OPTION_CHECK(threshold > 0.0 && threshold < 1.0, "superpoint.threshold");
+  FEATURE_OPTION_CHECK(nms_radius_px >= 0, "superpoint.nms_radius_px");
+  FEATURE_OPTION_CHECK(border_px >= 0, "superpoint.border_px");
+}
+
+void FeatureOptions::Check() const {
+  const auto& names = FeatureTypeNames();
+  SLAM_THROW_IF_NOT(ConfigError, std::find(names.begin(), names.end(), type) != names.end())
+      << "features.type: unknown feature type '" << type << "'";
+  FEATURE_OPTION_CHECK(max_features >= 1, "max_features");
+  FEATURE_OPTION_CHECK(vocabulary_features >= 1 && vocabulary_features <= max_features,
+                       "vocabulary_features");
+  FEATURE_OPTION_CHECK(max_depth_m >= 0.0, "max_depth_m");
+  surf.Check();
+  sift.Check();
+  orb.Check();
+  brisk.Check();
+  kaze.Check();
+  akaze.Check();
+  gftt.Check();
+  fast.Check();
+  brief.Check();
+  daisy.Check();
+  freak.Check();
+  superpoint.Check();
+}
+
+const std::vector<std::string>& FeatureTypeNames() {
+  static const std::vector<std::string> kNames = {"surf", "sift",  "brief", "brisk", "kaze",
+                                                  "daisy", "orb", "akaze", "freak", "superpoint"};
+  return kNames;
+}
+
+FeatureOptions ReadFeatureOptions(JsonFields& f) {
+  FeatureOptions o;
+  f.Read("type", &o.type);
+  f.Read("max_features", &o.max_features);
+  f.Read("vocabulary_features", &o.vocabulary_features);
+  f.Read("max_depth_m", &o.max_depth_m);
+  ReadSurf(f.Child("surf"), &o.surf);
+  ReadSift(f.Child("sift"), &o.sift);
+  ReadOrb(f.Child("orb"), &o.orb);
+  ReadBrisk(f.Child("brisk"), &o.brisk);
+  ReadKaze(f.Child("kaze"), &o.kaze);
+  ReadAkaze(f.Child("akaze"), &o.akaze);
+  ReadGftt(f.Child("gftt"), &o.gftt);
+  ReadFast(f.Child("fast"), &o.fast);
+  ReadBrief(f.Child("brief"), &o.brief);
+  ReadDaisy(f.Child("daisy"), &o.daisy);
+  ReadFreak(f.Child("freak"), &o.freak);
+  ReadSuperPoint(f.Child("superpoint"), &o.superpoint);
+  f.RejectUnknown();
+  o.Check();
+  return o;
+}
+
+}  // namespace duskmap

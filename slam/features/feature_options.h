@@ -1,0 +1,142 @@
+// Typed options of every feature type, with the paper's settings as defaults
+// (spec §1.2 and appendix A: Vis/MaxFeatures 1000, Kp/MaxFeatures 400,
+// SURF/HessianThreshold 100, SIFT/ContrastThreshold 0.02, BRISK/Thresh 10,
+// ORB/EdgeThreshold 19, ORB/ScaleFactor 2, ORB/NLevels 3, BRIEF/Bytes 32).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "slam/core/json_fields.h"
+
+namespace duskmap {
+
+struct SurfOptions {
+  double hessian_threshold = 100.0;  // minimum det(H) of the box-filter Hessian (image in 0..255)
+  int octaves = 4;                   // number of octaves (filter sizes double per octave)
+  int octave_layers = 2;             // layers per octave used for extrema (maps = layers + 2)
+  bool extended = false;             // 128-D descriptor instead of 64-D
+  bool upright = false;              // U-SURF: no orientation assignment (angle 0)
+  void Check() const;
+};
+
+struct SiftOptions {
+  int octave_layers = 3;            // layers per octave
+  double contrast_threshold = 0.02;  // DoG contrast threshold (paper's runs)
+  double edge_threshold = 10.0;     // principal-curvature ratio limit
+  double sigma = 1.6;               // base blur, pixels
+  bool root_sift = false;           // L1-normalise then square-root each descriptor
+  void Check() const;
+};
+
+struct OrbOptions {
+  double scale_factor = 2.0;  // pyramid decimation ratio
+  int levels = 3;             // pyramid levels
+  int edge_threshold = 19;    // border without features, pixels
+  int patch_size = 31;        // oriented BRIEF patch, pixels
+  int fast_threshold = 20;    // FAST intensity threshold, grey levels
+  void Check() const;
+};
+
+struct BriskOptions {
+  int threshold = 10;          // AGAST threshold, grey levels (paper's runs)
+  int octaves = 3;             // detection octaves
+  double pattern_scale = 1.0;  // sampling pattern scale
+  void Check() const;
+};
+
+struct KazeOptions {
+  bool extended = false;     // 128-D instead of 64-D
+  bool upright = false;      // no orientation
+  double threshold = 0.001;  // detector response threshold
+  int octaves = 4;           // octaves
+  int octave_layers = 4;     // sublevels per octave
+  void Check() const;
+};
+
+struct AkazeOptions {
+  double threshold = 0.001;  // detector response threshold
+  int octaves = 4;           // octaves
+  int octave_layers = 4;     // sublevels per octave
+  void Check() const;
+};
+
+// Corner detectors the binary descriptors run on.
+struct GfttOptions {
+  double quality_level = 0.001;  // relative to the best corner's min eigenvalue
+  double min_distance_px = 7.0;  // minimum distance between corners, pixels
+  int block_size = 3;            // covariance window, pixels
+  void Check() const;
+};
+
+struct FastOptions {
+  int threshold = 20;  // intensity threshold, grey levels
+  void Check() const;
+};
+
+struct BriefOptions {
+  int bytes = 32;            // descriptor length: 16, 32 or 64 bytes
+  int patch_size_px = 48;    // side of the square test patch, pixels
+  double smooth_sigma_px = 2.0;  // Gaussian pre-smoothing, pixels (9x9 kernel)
+  uint64_t pattern_seed = 20100905;  // seed of the fixed Gaussian test pattern
+  void Check() const;
+};
+
+struct DaisyOptions {
+  double radius_px = 15.0;  // radius of the outermost ring, pixels
+  int rings = 3;            // rings of histograms around the centre
+  int ring_points = 8;      // histograms per ring
+  int orientations = 8;     // orientation bins per histogram
+  bool normalize = true;    // unit-normalise each histogram (Tola et al.'s partial normalisation)
+  bool use_orientation = false;  // rotate the grid to the keypoint angle (OpenCV default: off)
+  void Check() const;
+};
+
+struct FreakOptions {
+  std::string detector = "gftt";  // keypoints: "gftt" (RTAB-Map type 5) or "fast" (type 3)
+  bool orientation_normalized = true;  // rotate the pattern to the 45-pair orientation
+  bool scale_normalized = true;        // scale the pattern with the keypoint size
+  double pattern_scale = 22.0;         // outer pattern radius is 2/3 of this at scale 1, pixels
+  void Check() const;
+};
+
+struct SuperPointOptions {
+  std::string model_path;       // ONNX file (input 1x1xHxW gray/255; outputs semi, desc)
+  double threshold = 0.010;     // minimum heat-map score
+  int nms_radius_px = 4;        // max-pool non-maximum suppression radius, pixels
+  int border_px = 4;            // keypoints closer than this to the border are removed
+  void Check() const;
+};
+
+// Which extractor to build and its options. `type` is one of
+// FeatureTypeNames(); only the sub-options of that type are used.
+struct FeatureOptions {
+  std::string type = "surf";
+  int max_features = 1000;        // Vis/MaxFeatures: kept per frame, strongest first
+  int vocabulary_features = 400;  // Kp/MaxFeatures: the first rows quantized into words
+  double max_depth_m = 0.0;       // 3D points beyond this depth are NaN; 0 = no limit
+  SurfOptions surf;
+  SiftOptions sift;
+  OrbOptions orb;
+  BriskOptions brisk;
+  KazeOptions kaze;
+  AkazeOptions akaze;
+  GfttOptions gftt;
+  FastOptions fast;
+  BriefOptions brief;
+  DaisyOptions daisy;
+  FreakOptions freak;
+  SuperPointOptions superpoint;
+  void Check() const;
+};
+
+// surf, sift, brief, brisk, kaze, daisy, orb, akaze, freak, superpoint.
+const std::vector<std::string>& FeatureTypeNames();
+
+// Reads FeatureOptions from a JSON object such as
+//   {"type": "sift", "max_features": 1000, "sift": {"contrast_threshold": 0.02}}
+// Unknown keys are rejected with their path; the result is checked.
+FeatureOptions ReadFeatureOptions(JsonFields& fields);
+
+}  // namespace duskmap

@@ -1,0 +1,93 @@
+#include "slam/features/opencv_extractors.h"
+
+#include <cmath>
+
+#include "slam/core/check.h"
+
+namespace duskmap {
+
+OpenCvExtractor::OpenCvExtractor(std::string name, cv::Ptr<cv::Feature2D> feature,
+                                 DescriptorKind kind, int max_features, double max_depth_m,
+                                 bool root_sift)
+    : FeatureExtractor(max_features, max_depth_m),
+      name_(std::move(name)),
+      feature_(std::move(feature)),
+      kind_(kind),
+      root_sift_(root_sift) {}
+
+void OpenCvExtractor::DetectAndDescribe(const cv::Mat& gray, std::vector<cv::KeyPoint>* keypoints,
+                                        cv::Mat* descriptors) const {
+  feature_->detect(gray, *keypoints);
+  // Limit before describing (the reference's limitKeypoints), strongest first.
+  cv::Mat none;
+  KeepStrongest(max_features(), keypoints, &none);
+  if (keypoints->empty()) return;
+  feature_->compute(gray, *keypoints, *descriptors);
+  if (keypoints->empty()) {
+    descriptors->release();
+    return;
+  }
+  SLAM_CHECK(descriptors->rows == static_cast<int>(keypoints->size()));
+  if (root_sift_ && descriptors->type() == CV_32F) {
+    for (int r = 0; r < descriptors->rows; ++r) {
+      float* row = descriptors->ptr<float>(r);
+      double l1 = 0.0;
+      for (int c = 0; c < descriptors->cols; ++c) l1 += std::abs(row[c]);
+      if (l1 <= 0.0) continue;
+      for (int c = 0; c < descriptors->cols; ++c) {
+        row[c] = static_cast<float>(std::sqrt(std::abs(row[c]) / l1));
+      }
+    }
+  }
+}
+
+std::unique_ptr<FeatureExtractor> CreateSiftExtractor(const SiftOptions& o, int max_features,
+                                                      double max_depth_m) {
+  o.Check();
+  return std::make_unique<OpenCvExtractor>(
+      "sift",
+      cv::SIFT::create(max_features, o.octave_layers, o.contrast_threshold, o.edge_threshold,
+                       o.sigma),
+      DescriptorKind::kFloat, max_features, max_depth_m, o.root_sift);
+}
+
+std::unique_ptr<FeatureExtractor> CreateOrbExtractor(const OrbOptions& o, int max_features,
+                                                     double max_depth_m) {
+  o.Check();
+  return std::make_unique<OpenCvExtractor>(
+      "orb",
+      cv::ORB::create(max_features, static_cast<float>(o.scale_factor), o.levels,
+                      o.edge_threshold, /*firstLevel=*/0, /*WTA_K=*/2, cv::ORB::HARRIS_SCORE,
+                      o.patch_size, o.fast_threshold),
+      DescriptorKind::kBinary, max_features, max_depth_m);
+}
+
+std::unique_ptr<FeatureExtractor> CreateBriskExtractor(const BriskOptions& o, int max_features,
+                                                       double max_depth_m) {
+  o.Check();
+  return std::make_unique<OpenCvExtractor>(
+      "brisk", cv::BRISK::create(o.threshold, o.octaves, static_cast<float>(o.pattern_scale)),
+      DescriptorKind::kBinary, max_features, max_depth_m);
+}
+
+std::unique_ptr<FeatureExtractor> CreateKazeExtractor(const KazeOptions& o, int max_features,
+                                                      double max_depth_m) {
+  o.Check();
+  return std::make_unique<OpenCvExtractor>(
+      "kaze",
+      cv::KAZE::create(o.extended, o.upright, static_cast<float>(o.threshold), o.octaves,
+                       o.octave_layers, cv::KAZE::DIFF_PM_G2),
+      DescriptorKind::kFloat, max_features, max_depth_m);
+}
+
+std::unique_ptr<FeatureExtractor> CreateAkazeExtractor(const AkazeOptions& o, int max_features,
+                                                       double max_depth_m) {
+  o.Check();
+  return std::make_unique<OpenCvExtractor>(
+      "akaze",
+      cv::AKAZE::create(cv::AKAZE::DESCRIPTOR_MLDB, 0, 3, static_cast<float>(o.threshold),
+                        o.octaves, o.octave_layers, cv::KAZE::DIFF_PM_G2),
+      DescriptorKind::kBinary, max_features, max_depth_m);
+}
+
+}  // namespace duskmap

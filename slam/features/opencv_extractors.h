@@ -1,0 +1,41 @@
+// Extractors backed by OpenCV 4.6's features2d (no xfeatures2d): SIFT, ORB,
+// BRISK, KAZE and AKAZE, configured with the reference's parameters.
+#pragma once
+
+#include <opencv2/features2d.hpp>
+
+#include "slam/features/feature_extractor.h"
+
+namespace duskmap {
+
+class OpenCvExtractor : public FeatureExtractor {
+ public:
+  // `root_sift` post-processes float descriptors (L1 normalise, square root).
+  OpenCvExtractor(std::string name, cv::Ptr<cv::Feature2D> feature, DescriptorKind kind,
+                  int max_features, double max_depth_m, bool root_sift = false);
+  std::string name() const override { return name_; }
+  DescriptorKind kind() const override { return kind_; }
+
+ protected:
+  void DetectAndDescribe(const cv::Mat& gray, std::vector<cv::KeyPoint>* keypoints,
+                         cv::Mat* descriptors) const override;
+
+ private:
+  std::string name_;
+  cv::Ptr<cv::Feature2D> feature_;
+  DescriptorKind kind_;
+  bool root_sift_;
+};
+
+std::unique_ptr<FeatureExtractor> CreateSiftExtractor(const SiftOptions& o, int max_features,
+                                                      double max_depth_m);
+std::unique_ptr<FeatureExtractor> CreateOrbExtractor(const OrbOptions& o, int max_features,
+                                                     double max_depth_m);
+std::unique_ptr<FeatureExtractor> CreateBriskExtractor(const BriskOptions& o, int max_features,
+                                                       double max_depth_m);
+std::unique_ptr<FeatureExtractor> CreateKazeExtractor(const KazeOptions& o, int max_features,
+                                                      double max_depth_m);
+std::unique_ptr<FeatureExtractor> CreateAkazeExtractor(const AkazeOptions& o, int max_features,
+                                                       double max_depth_m);
+
+}  // namespace duskmap
