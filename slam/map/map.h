@@ -1,0 +1,129 @@
+// The multi-session map: sessions, nodes (poses, features, word ids), links
+// with information matrices, the vocabulary's words, and the metadata that
+// says how it was built (feature type and every parameter). Only the engine's
+// mapping phase mutates a Map; localization works on a const Map. The store
+// (map_store.h) saves and loads it.
+#pragma once
+
+#include <algorithm>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "slam/core/camera.h"
+#include "slam/core/graph_types.h"
+#include "slam/core/rigid3.h"
+#include "slam/features/frame_features.h"
+#include "slam/vocabulary/word_types.h"
+
+namespace duskmap {
+
+// How the map's features were made. A map is only usable with the same
+// extractor, so loading checks feature_type against the caller's.
+struct MapMetadata {
+  std::string feature_type;              // FeatureOptions::type, e.g. "surf"
+  std::string feature_parameters_json;   // every extractor parameter, as JSON text
+  std::string engine_parameters_json;    // the engine options that built the map, as JSON text
+  DescriptorKind descriptor_kind = DescriptorKind::kFloat;
+  int descriptor_cv_type = -1;  // OpenCV type of a descriptor row (CV_32F, CV_8U); -1 = no node yet
+  int descriptor_cols = 0;      // elements per descriptor row
+};
+
+struct MapSession {
+  SessionId id = 0;
+  std::string name;                       // the input session's name, e.g. "1", "A"
+  std::optional<std::string> clock_time;  // local "HH:MM" when known
+};
+
+struct MapNode {
+  NodeId id = 0;
+  SessionId session = 0;
+  int64_t frame_index = 0;   // position of the frame in its input session
+  double timestamp_s = 0.0;  // the frame's timestamp, seconds
+  Rigid3d map_from_body;     // optimised pose in the map frame
+  Rigid3d odom_from_body;    // odometry pose in its session's odometry frame
+  Rigid3d body_from_camera;  // camera extrinsics of the frame
+  PinholeCamera camera;      // intrinsics of the frame
+  std::optional<Rigid3d> truth_from_camera;  // ground truth when the dataset had it
+  FrameFeatures features;    // keypoints, descriptors, 3D points (camera frame)
+  // Word of each of the first word_ids.size() keypoints (kNoWord when not
+  // quantized); the vocabulary's references are rebuilt from these.
+  std::vector<WordId> word_ids;
+
+  Rigid3d map_from_camera() const { return map_from_body * body_from_camera; }
+};
+
+// The vocabulary's words as stored: one descriptor row per word.
+struct MapWords {
+  std::vector<WordId> ids;  // increasing
+  cv::Mat descriptors;      // one row per id, same type/cols as the nodes' descriptors
+};
+
+class Map {
+ public:
+  Map() = default;
+  explicit Map(MapMetadata metadata) : metadata_(std::move(metadata)) {}
+
+  const MapMetadata& metadata() const { return metadata_; }
+  MapMetadata& mutable_metadata() { return metadata_; }
+
+  // Appends a session with the next id (0, 1, ...) and returns that id.
+  SessionId AddSession(const std::string& name, const std::optional<std::string>& clock_time);
+  const std::vector<MapSession>& sessions() const { return sessions_; }
+
+  // Adds a node. Its id must be larger than every id seen so far (ids are
+  // never reused), its session must exist, and its descriptors must match
+  // the map's (the first node fixes descriptor type and width). Throws
+  // InputError otherwise.
+  void AddNode(MapNode node);
+  // Removes a node and every link touching it (graph reduction).
+  void RemoveNode(NodeId id);
+  bool HasNode(NodeId id) const { return nodes_.count(id) > 0; }
+  const MapNode& node(NodeId id) const;  // SLAM_CHECK that it exists
+  MapNode& mutable_node(NodeId id);
+  const std::map<NodeId, MapNode>& nodes() const { return nodes_; }
+  NodeId last_node_id() const { return last_node_id_; }  // 0 when none was ever added
+  NodeId NextNodeId() const { return last_node_id_ + 1; }
+  // Raises the last id seen to `id` (the store restores it, so that ids of
+  // removed nodes are never reused).
+  void ReserveNodeIdsUpTo(NodeId id) { last_node_id_ = std::max(last_node_id_, id); }
+
+  // Adds a link between existing distinct nodes; at most one link per pair of
+  // nodes (in either direction). Throws InputError otherwise.
+  void AddLink(const Link& link);
+  // Removes the link between a and b (either direction); false when none.
+  bool RemoveLink(NodeId a, NodeId b);
+  bool HasLink(NodeId a, NodeId b) const;
+  const std::map<std::pair<NodeId, NodeId>, Link>& links() const { return links_; }
+  // Links touching `id`, in either direction, as stored.
+  std::vector<Link> LinksOf(NodeId id) const;
+  std::vector<NodeId> NodesOfSession(SessionId session) const;
+
+  // Groups of sessions joined by links (odometry links never cross sessions,
+  // so groups are formed by loop-closure, proximity and merged links), each
+  // sorted, ordered by their smallest session id. Sessions without nodes
+  // form their own group.
+  std::vector<std::vector<SessionId>> ConnectedSessionGroups() const;
+
+  const MapWords& words() const { return words_; }
+  // Replaces the stored words (the engine snapshots its vocabulary here).
+  void SetWords(MapWords words);
+
+ private:
+  void CheckDescriptors(const MapNode& node);
+
+  MapMetadata metadata_;
+  std::vector<MapSession> sessions_;
+  std::map<NodeId, MapNode> nodes_;
+  std::map<std::pair<NodeId, NodeId>, Link> links_;  // key (from, to)
+  std::map<NodeId, std::set<NodeId>> adjacency_;     // both directions
+  NodeId last_node_id_ = 0;
+  MapWords words_;
+};
+
+}  // namespace duskmap

@@ -1,0 +1,349 @@
+#include "slam/map/map_store.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <map>
+
+#include "slam/core/check.h"
+#include "slam/map/map_codec.h"
+#include "slam/map/sqlite_db.h"
+
+namespace duskmap {
+namespace {
+
+constexpr const char* kSchema = R"sql(
+CREATE TABLE meta(key TEXT PRIMARY KEY, value TEXT NOT NULL);
+CREATE TABLE sessions(id INTEGER PRIMARY KEY, name TEXT NOT NULL, clock_time TEXT);
+CREATE TABLE nodes(id INTEGER PRIMARY KEY, session INTEGER NOT NULL, frame_index INTEGER NOT NULL,
+  timestamp_s REAL NOT NULL, map_pose BLOB NOT NULL, odom_pose BLOB NOT NULL,
+  body_from_camera BLOB NOT NULL, camera BLOB NOT NULL, truth_pose BLOB,
+  num_features INTEGER NOT NULL, keypoints BLOB NOT NULL, points BLOB NOT NULL,
+  descriptors BLOB NOT NULL, word_ids BLOB NOT NULL);
+CREATE TABLE links(from_id INTEGER NOT NULL, to_id INTEGER NOT NULL, type INTEGER NOT NULL,
+  transform BLOB NOT NULL, information BLOB NOT NULL, PRIMARY KEY(from_id, to_id));
+CREATE TABLE words(id INTEGER PRIMARY KEY, descriptor BLOB NOT NULL);
+)sql";
+
+// ---- saving -------------------------------------------------------------
+
+void WriteMeta(SqliteDatabase& db, const Map& map) {
+  const MapMetadata& m = map.metadata();
+  const std::map<std::string, std::string> meta = {
+      {"schema_version", std::to_string(kMapSchemaVersion)},
+      {"feature_type", m.feature_type},
+      {"feature_parameters", m.feature_parameters_json},
+      {"engine_parameters", m.engine_parameters_json},
+      {"descriptor_kind", m.descriptor_kind == DescriptorKind::kBinary ? "binary" : "float"},
+      {"descriptor_cv_type", std::to_string(m.descriptor_cv_type)},
+      {"descriptor_cols", std::to_string(m.descriptor_cols)},
+      {"last_node_id", std::to_string(map.last_node_id())},
+      {"num_sessions", std::to_string(map.sessions().size())},
+      {"num_nodes", std::to_string(map.nodes().size())},
+      {"num_links", std::to_string(map.links().size())},
+      {"num_words", std::to_string(map.words().ids.size())}};
+  SqliteStatement insert = db.Prepare("INSERT INTO meta VALUES(?, ?)");
+  for (const auto& [key, value] : meta) {
+    insert.BindText(1, key);
+    insert.BindText(2, value);
+    insert.Run();
+  }
+}
+
+void WriteSessions(SqliteDatabase& db, const Map& map) {
+  SqliteStatement insert = db.Prepare("INSERT INTO sessions VALUES(?, ?, ?)");
+  for (const MapSession& s : map.sessions()) {
+    insert.BindInt(1, s.id);
+    insert.BindText(2, s.name);
+    if (s.clock_time) {
+      insert.BindText(3, *s.clock_time);
+    } else {
+      insert.BindNull(3);
+    }
+    insert.Run();
+  }
+}
+
+void WriteNodes(SqliteDatabase& db, const Map& map) {
+  SqliteStatement insert =
+      db.Prepare("INSERT INTO nodes VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  for (const auto& [id, n] : map.nodes()) {
+    insert.BindInt(1, id);
+    insert.BindInt(2, n.session);
+    insert.BindInt(3, n.frame_index);
+    insert.BindDouble(4, n.timestamp_s);
+    insert.BindBlob(5, EncodePose(n.map_from_body));
+    insert.BindBlob(6, EncodePose(n.odom_from_body));
+    insert.BindBlob(7, EncodePose(n.body_from_camera));
+    insert.BindBlob(8, EncodeCamera(n.camera));
+    if (n.truth_from_camera) {
+      insert.BindBlob(9, EncodePose(*n.truth_from_camera));
+    } else {
+      insert.BindNull(9);
+    }
+    insert.BindInt(10, static_cast<int64_t>(n.features.size()));
+    insert.BindBlob(11, EncodeKeypoints(n.features.keypoints));
+    insert.BindBlob(12, EncodePoints(n.features.points_in_camera));
+    insert.BindBlob(13, EncodeMatrix(n.features.descriptors));
+    insert.BindBlob(14, EncodeWordIds(n.word_ids));
+    insert.Run();
+  }
+}
+
+void WriteLinksAndWords(SqliteDatabase& db, const Map& map) {
+  SqliteStatement link = db.Prepare("INSERT INTO links VALUES(?, ?, ?, ?, ?)");
+  for (const auto& [key, l] : map.links()) {
+    link.BindInt(1, l.from);
+    link.BindInt(2, l.to);
+    link.BindInt(3, static_cast<int>(l.type));
+    link.BindBlob(4, EncodePose(l.from_from_to));
+    link.BindBlob(5, EncodeInformation(l.information));
+    link.Run();
+  }
+  SqliteStatement word = db.Prepare("INSERT INTO words VALUES(?, ?)");
+  const MapWords& words = map.words();
+  for (size_t i = 0; i < words.ids.size(); ++i) {
+    word.BindInt(1, words.ids[i]);
+    word.BindBlob(2, EncodeMatrix(words.descriptors.row(static_cast<int>(i))));
+    word.Run();
+  }
+}
+
+void FsyncPath(const std::string& path, bool directory) {
+  const int fd = ::open(path.c_str(), directory ? (O_RDONLY | O_DIRECTORY) : O_RDONLY);
+  SLAM_THROW_IF_NOT(InputError, fd >= 0) << path << ": cannot open to flush: " << std::strerror(errno);
+  const int rc = ::fsync(fd);
+  ::close(fd);
+  SLAM_THROW_IF_NOT(InputError, rc == 0) << path << ": fsync failed: " << std::strerror(errno);
+}
+
+std::string DirectoryOf(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  if (slash == std::string::npos) return ".";
+  return slash == 0 ? "/" : path.substr(0, slash);
+}
+
+// ---- loading ------------------------------------------------------------
+
+uint64_t ReadBigEndian(const unsigned char* bytes, int count) {
+  uint64_t value = 0;
+  for (int i = 0; i < count; ++i) value = (value << 8) | bytes[i];
+  return value;
+}
+
+// Checks the SQLite header: magic string, and a file at least as long as the
+// page count the header declares (a truncated copy fails here).
+void CheckFileHeader(const std::string& path) {
+  struct stat info;
+  SLAM_THROW_IF_NOT(InputError, ::stat(path.c_str(), &info) == 0)
+      << path << ": no such map file";
+  std::ifstream file(path, std::ios::binary);
+  unsigned char header[100] = {};
+  file.read(reinterpret_cast<char*>(header), sizeof(header));
+  SLAM_THROW_IF_NOT(InputError, file.gcount() == sizeof(header) &&
+                                    std::memcmp(header, "SQLite format 3", 16) == 0)
+      << path << ": not a duskmap map (not an SQLite database, or truncated to "
+      << info.st_size << " bytes)";
+  uint64_t page_size = ReadBigEndian(header + 16, 2);
+  if (page_size == 1) page_size = 65536;
+  const uint64_t page_count = ReadBigEndian(header + 28, 4);
+  const uint64_t expected = page_size * page_count;
+  SLAM_THROW_IF_NOT(InputError, static_cast<uint64_t>(info.st_size) >= expected)
+      << path << ": truncated map file (" << info.st_size << " of " << expected << " bytes)";
+}
+
+void CheckIntegrity(SqliteDatabase& db) {
+  SqliteStatement check = db.Prepare("PRAGMA quick_check");
+  SLAM_THROW_IF_NOT(InputError, check.Step()) << db.path() << ": integrity check gave no result";
+  const std::string result = check.Text(0);
+  SLAM_THROW_IF_NOT(InputError, result == "ok")
+      << db.path() << ": corrupted map file (" << result << ")";
+}
+
+std::map<std::string, std::string> ReadMeta(SqliteDatabase& db) {
+  std::map<std::string, std::string> meta;
+  SqliteStatement has = db.Prepare("SELECT count(*) FROM sqlite_master WHERE name = 'meta'");
+  SLAM_THROW_IF_NOT(InputError, has.Step() && has.Int(0) == 1)
+      << db.path() << ": not a duskmap map (no meta table)";
+  SqliteStatement select = db.Prepare("SELECT key, value FROM meta");
+  while (select.Step()) meta[select.Text(0)] = select.Text(1);
+  return meta;
+}
+
+const std::string& MetaValue(const std::map<std::string, std::string>& meta,
+                             const std::string& key, const std::string& path) {
+  auto it = meta.find(key);
+  SLAM_THROW_IF_NOT(InputError, it != meta.end()) << path << ": map has no '" << key << "' entry";
+  return it->second;
+}
+
+int64_t MetaInt(const std::map<std::string, std::string>& meta, const std::string& key,
+                const std::string& path) {
+  const std::string& text = MetaValue(meta, key, path);
+  int64_t value = 0;
+  size_t used = 0;
+  try {
+    value = std::stoll(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  SLAM_THROW_IF_NOT(InputError, used > 0 && used == text.size())
+      << path << ": map entry '" << key << "' is not an integer: '" << text << "'";
+  return value;
+}
+
+MapMetadata ReadMetadata(const std::map<std::string, std::string>& meta, const std::string& path,
+                         const MapLoadOptions& options) {
+  const int64_t version = MetaInt(meta, "schema_version", path);
+  SLAM_THROW_IF_NOT(InputError, version == kMapSchemaVersion)
+      << path << ": map schema version " << version << " is not supported (this build reads "
+      << kMapSchemaVersion << ")";
+  MapMetadata m;
+  m.feature_type = MetaValue(meta, "feature_type", path);
+  SLAM_THROW_IF_NOT(InputError, options.expected_feature_type.empty() ||
+                                    options.expected_feature_type == m.feature_type)
+      << path << ": map was built with feature type '" << m.feature_type << "', expected '"
+      << options.expected_feature_type << "'";
+  m.feature_parameters_json = MetaValue(meta, "feature_parameters", path);
+  m.engine_parameters_json = MetaValue(meta, "engine_parameters", path);
+  m.descriptor_kind = MetaValue(meta, "descriptor_kind", path) == "binary"
+                          ? DescriptorKind::kBinary
+                          : DescriptorKind::kFloat;
+  m.descriptor_cv_type = static_cast<int>(MetaInt(meta, "descriptor_cv_type", path));
+  m.descriptor_cols = static_cast<int>(MetaInt(meta, "descriptor_cols", path));
+  return m;
+}
+
+void ReadSessions(SqliteDatabase& db, Map* map) {
+  SqliteStatement select = db.Prepare("SELECT id, name, clock_time FROM sessions ORDER BY id");
+  while (select.Step()) {
+    const SessionId id = map->AddSession(
+        select.Text(1),
+        select.IsNull(2) ? std::nullopt : std::optional<std::string>(select.Text(2)));
+    SLAM_THROW_IF_NOT(InputError, id == select.Int(0))
+        << db.path() << ": session ids are not 0, 1, 2, ... (found " << select.Int(0) << ")";
+  }
+}
+
+MapNode ReadNodeRow(const SqliteStatement& row, const MapMetadata& m, const std::string& path) {
+  MapNode n;
+  n.id = row.Int(0);
+  const std::string what = path + ": node " + std::to_string(n.id);
+  n.session = static_cast<SessionId>(row.Int(1));
+  n.frame_index = row.Int(2);
+  n.timestamp_s = row.Double(3);
+  n.map_from_body = DecodePose(row.Blob(4), what + " map pose");
+  n.odom_from_body = DecodePose(row.Blob(5), what + " odometry pose");
+  n.body_from_camera = DecodePose(row.Blob(6), what + " camera extrinsics");
+  n.camera = DecodeCamera(row.Blob(7), what + " camera");
+  if (!row.IsNull(8)) n.truth_from_camera = DecodePose(row.Blob(8), what + " ground truth");
+  const int64_t count = row.Int(9);
+  n.features.keypoints = DecodeKeypoints(row.Blob(10), what + " keypoints");
+  n.features.points_in_camera = DecodePoints(row.Blob(11), what + " 3D points");
+  n.features.descriptors = DecodeMatrix(row.Blob(12), static_cast<int>(count), m.descriptor_cols,
+                                        m.descriptor_cv_type, what + " descriptors");
+  n.features.kind = m.descriptor_kind;
+  n.word_ids = DecodeWordIds(row.Blob(13), what + " word ids");
+  SLAM_THROW_IF_NOT(InputError, static_cast<int64_t>(n.features.keypoints.size()) == count &&
+                                    static_cast<int64_t>(n.features.points_in_camera.size()) == count)
+      << what << ": keypoint, 3D point and feature counts differ";
+  return n;
+}
+
+void ReadNodes(SqliteDatabase& db, const MapMetadata& m, Map* map) {
+  SqliteStatement select = db.Prepare(
+      "SELECT id, session, frame_index, timestamp_s, map_pose, odom_pose, body_from_camera, "
+      "camera, truth_pose, num_features, keypoints, points, descriptors, word_ids FROM nodes "
+      "ORDER BY id");
+  while (select.Step()) map->AddNode(ReadNodeRow(select, m, db.path()));
+}
+
+void ReadLinks(SqliteDatabase& db, Map* map) {
+  SqliteStatement select =
+      db.Prepare("SELECT from_id, to_id, type, transform, information FROM links");
+  while (select.Step()) {
+    Link link;
+    link.from = select.Int(0);
+    link.to = select.Int(1);
+    const std::string what =
+        db.path() + ": link " + std::to_string(link.from) + " -> " + std::to_string(link.to);
+    const int64_t type = select.Int(2);
+    SLAM_THROW_IF_NOT(InputError, type >= 0 && type <= static_cast<int>(LinkType::kMerged))
+        << what << ": unknown link type " << type;
+    link.type = static_cast<LinkType>(type);
+    link.from_from_to = DecodePose(select.Blob(3), what + " transform");
+    link.information = DecodeInformation(select.Blob(4), what + " information");
+    map->AddLink(link);
+  }
+}
+
+void ReadWords(SqliteDatabase& db, const MapMetadata& m, Map* map) {
+  MapWords words;
+  std::vector<cv::Mat> rows;
+  SqliteStatement select = db.Prepare("SELECT id, descriptor FROM words ORDER BY id");
+  while (select.Step()) {
+    words.ids.push_back(static_cast<WordId>(select.Int(0)));
+    rows.push_back(DecodeMatrix(select.Blob(1), 1, m.descriptor_cols, m.descriptor_cv_type,
+                                db.path() + ": word " + std::to_string(words.ids.back())));
+  }
+  if (!rows.empty()) cv::vconcat(rows, words.descriptors);
+  map->SetWords(std::move(words));
+}
+
+void CheckCounts(const std::map<std::string, std::string>& meta, const Map& map,
+                 const std::string& path) {
+  const bool ok = MetaInt(meta, "num_sessions", path) == static_cast<int64_t>(map.sessions().size()) &&
+                  MetaInt(meta, "num_nodes", path) == static_cast<int64_t>(map.nodes().size()) &&
+                  MetaInt(meta, "num_links", path) == static_cast<int64_t>(map.links().size()) &&
+                  MetaInt(meta, "num_words", path) == static_cast<int64_t>(map.words().ids.size());
+  SLAM_THROW_IF_NOT(InputError, ok)
+      << path << ": incomplete map (row counts differ from those recorded at save)";
+}
+
+}  // namespace
+
+void SaveMap(const Map& map, const std::string& path) {
+  const std::string temp = path + ".saving";
+  SLAM_THROW_IF_NOT(InputError, std::remove(temp.c_str()) == 0 || errno == ENOENT)
+      << temp << ": cannot remove a stale temporary file: " << std::strerror(errno);
+  {
+    SqliteDatabase db(temp, /*read_only=*/false);
+    // The temporary file is disposable: no journal; durability comes from the
+    // fsync before the rename.
+    db.Execute("PRAGMA journal_mode=OFF; PRAGMA synchronous=OFF;");
+    db.Execute("BEGIN");
+    db.Execute(kSchema);
+    WriteMeta(db, map);
+    WriteSessions(db, map);
+    WriteNodes(db, map);
+    WriteLinksAndWords(db, map);
+    db.Execute("COMMIT");
+  }
+  FsyncPath(temp, /*directory=*/false);
+  SLAM_THROW_IF_NOT(InputError, std::rename(temp.c_str(), path.c_str()) == 0)
+      << path << ": cannot replace the map file: " << std::strerror(errno);
+  FsyncPath(DirectoryOf(path), /*directory=*/true);
+}
+
+Map LoadMap(const std::string& path, const MapLoadOptions& options) {
+  CheckFileHeader(path);
+  SqliteDatabase db(path, /*read_only=*/true);
+  if (options.verify_integrity) CheckIntegrity(db);
+  const std::map<std::string, std::string> meta = ReadMeta(db);
+  const MapMetadata metadata = ReadMetadata(meta, path, options);
+  Map map(metadata);
+  ReadSessions(db, &map);
+  ReadNodes(db, metadata, &map);
+  map.ReserveNodeIdsUpTo(MetaInt(meta, "last_node_id", path));
+  ReadLinks(db, &map);
+  ReadWords(db, metadata, &map);
+  CheckCounts(meta, map, path);
+  return map;
+}
+
+}  // namespace duskmap

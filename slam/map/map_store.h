@@ -1,0 +1,35 @@
+// The map store: one SQLite file holding a Map (sessions, nodes with poses,
+// keypoints, 3D points, descriptors and word ids, links with information
+// matrices, the vocabulary's words, the feature type and its parameters, and
+// the schema version).
+//
+// Saving is transactional at the file level: the map is written to
+// "<path>.saving", flushed to disk (fsync), then renamed over <path> and the
+// directory flushed, so a process killed during a save leaves the previous
+// file intact (rename is atomic on POSIX file systems).
+//
+// Loading checks, with one-line InputError messages naming the file: that it
+// exists and is an SQLite file, that it is not truncated (the header's page
+// count against the file size), its integrity (PRAGMA quick_check), the
+// schema version, the feature type the caller expects, and every row's sizes.
+#pragma once
+
+#include <string>
+
+#include "slam/map/map.h"
+
+namespace duskmap {
+
+inline constexpr int kMapSchemaVersion = 1;
+
+struct MapLoadOptions {
+  std::string expected_feature_type;  // "" accepts any; otherwise must equal the map's
+  bool verify_integrity = true;       // run PRAGMA quick_check (linear in the file size)
+};
+
+// Throws InputError naming the path when the file cannot be written.
+void SaveMap(const Map& map, const std::string& path);
+
+Map LoadMap(const std::string& path, const MapLoadOptions& options = MapLoadOptions());
+
+}  // namespace duskmap

@@ -1,0 +1,245 @@
+#include "slam/map/map_store.h"
+
+#include <signal.h>
+#include <sqlite3.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "slam/core/check.h"
+#include "tests/map/test_map.h"
+
+namespace duskmap {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool SamePose(const Rigid3d& a, const Rigid3d& b) {
+  return a.translation == b.translation && a.rotation.coeffs() == b.rotation.coeffs();
+}
+
+bool SameMatrix(const cv::Mat& a, const cv::Mat& b) {
+  if (a.empty() || b.empty()) return a.empty() && b.empty();
+  return a.type() == b.type() && a.size() == b.size() && cv::norm(a, b, cv::NORM_INF) == 0.0;
+}
+
+void ExpectNodesEqual(const MapNode& a, const MapNode& b) {
+  EXPECT_EQ(a.session, b.session);
+  EXPECT_EQ(a.frame_index, b.frame_index);
+  EXPECT_EQ(a.timestamp_s, b.timestamp_s);
+  EXPECT_TRUE(SamePose(a.map_from_body, b.map_from_body));
+  EXPECT_TRUE(SamePose(a.odom_from_body, b.odom_from_body));
+  EXPECT_TRUE(SamePose(a.body_from_camera, b.body_from_camera));
+  EXPECT_EQ(a.camera.fx, b.camera.fx);
+  EXPECT_EQ(a.camera.width, b.camera.width);
+  ASSERT_EQ(a.truth_from_camera.has_value(), b.truth_from_camera.has_value());
+  if (a.truth_from_camera) {
+    EXPECT_TRUE(SamePose(*a.truth_from_camera, *b.truth_from_camera));
+  }
+  ASSERT_EQ(a.features.size(), b.features.size());
+  for (size_t i = 0; i < a.features.size(); ++i) {
+    const cv::KeyPoint &ka = a.features.keypoints[i], &kb = b.features.keypoints[i];
+    EXPECT_TRUE(ka.pt == kb.pt && ka.size == kb.size && ka.angle == kb.angle &&
+                ka.response == kb.response && ka.octave == kb.octave && ka.class_id == kb.class_id);
+    const Eigen::Vector3f &pa = a.features.points_in_camera[i], &pb = b.features.points_in_camera[i];
+    EXPECT_TRUE(pa.allFinite() ? pa == pb : !pb.allFinite());
+  }
+  EXPECT_TRUE(SameMatrix(a.features.descriptors, b.features.descriptors));
+  EXPECT_EQ(a.features.kind, b.features.kind);
+  EXPECT_EQ(a.word_ids, b.word_ids);
+}
+
+void ExpectMapsEqual(const Map& a, const Map& b) {
+  EXPECT_EQ(a.metadata().feature_type, b.metadata().feature_type);
+  EXPECT_EQ(a.metadata().feature_parameters_json, b.metadata().feature_parameters_json);
+  EXPECT_EQ(a.metadata().engine_parameters_json, b.metadata().engine_parameters_json);
+  EXPECT_EQ(a.metadata().descriptor_cv_type, b.metadata().descriptor_cv_type);
+  EXPECT_EQ(a.last_node_id(), b.last_node_id());
+  ASSERT_EQ(a.sessions().size(), b.sessions().size());
+  for (size_t i = 0; i < a.sessions().size(); ++i) {
+    EXPECT_EQ(a.sessions()[i].name, b.sessions()[i].name);
+    EXPECT_EQ(a.sessions()[i].clock_time, b.sessions()[i].clock_time);
+  }
+  ASSERT_EQ(a.nodes().size(), b.nodes().size());
+  for (const auto& [id, node] : a.nodes()) {
+    ASSERT_TRUE(b.HasNode(id));
+    ExpectNodesEqual(node, b.node(id));
+  }
+  ASSERT_EQ(a.links().size(), b.links().size());
+  for (const auto& [key, link] : a.links()) {
+    const Link& other = b.links().at(key);
+    EXPECT_EQ(link.type, other.type);
+    EXPECT_TRUE(SamePose(link.from_from_to, other.from_from_to));
+    EXPECT_EQ(link.information, other.information);
+  }
+  EXPECT_EQ(a.words().ids, b.words().ids);
+  EXPECT_TRUE(SameMatrix(a.words().descriptors, b.words().descriptors));
+}
+
+class MapStoreTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("duskmap_map_store_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    path_ = (dir_ / "map.db").string();
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Runs an SQL statement on a saved map file (to forge bad inputs).
+  void Tamper(const std::string& sql) {
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open(path_.c_str(), &db), SQLITE_OK);
+    ASSERT_EQ(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr), SQLITE_OK);
+    sqlite3_close(db);
+  }
+
+  // Expects LoadMap to throw InputError whose message contains `needle`.
+  void ExpectLoadError(const std::string& needle, const MapLoadOptions& options = {}) {
+    try {
+      LoadMap(path_, options);
+      FAIL() << "expected InputError containing '" << needle << "'";
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find(needle), std::string::npos) << message;
+      EXPECT_EQ(message.find('\n'), std::string::npos) << "not one line: " << message;
+    }
+  }
+
+  fs::path dir_;
+  std::string path_;
+};
+
+TEST_F(MapStoreTest, RoundTripFloatAndBinary) {
+  for (bool binary : {false, true}) {
+    const Map map = testing::MakeTestMap(6, 50, binary);
+    SaveMap(map, path_);
+    EXPECT_FALSE(fs::exists(path_ + ".saving"));
+    ExpectMapsEqual(map, LoadMap(path_));
+  }
+}
+
+TEST_F(MapStoreTest, RoundTripKeepsIdsOfRemovedNodesReserved) {
+  Map map = testing::MakeTestMap(3);
+  map.RemoveNode(6);
+  SaveMap(map, path_);
+  const Map loaded = LoadMap(path_);
+  EXPECT_EQ(loaded.NextNodeId(), 7);
+  ExpectMapsEqual(map, loaded);
+}
+
+TEST_F(MapStoreTest, SaveOverwritesAndIgnoresStaleTemporary) {
+  SaveMap(testing::MakeTestMap(2), path_);
+  std::ofstream(path_ + ".saving") << "left over by a killed process";
+  const Map second = testing::MakeTestMap(4, 10, false, 99);
+  SaveMap(second, path_);
+  ExpectMapsEqual(second, LoadMap(path_));
+}
+
+TEST_F(MapStoreTest, KillDuringSaveLeavesPreviousMapIntact) {
+  const Map previous = testing::MakeTestMap(3);
+  SaveMap(previous, path_);
+  const Map big = testing::MakeTestMap(120, 600, false, 5);  // ~37 MB of descriptors
+  int killed_mid_save = 0;
+  for (int attempt = 0; attempt < 6 && killed_mid_save < 2; ++attempt) {
+    fs::remove(path_ + ".saving");  // left by the previous attempt's kill
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      try {
+        SaveMap(big, path_);
+      } catch (...) {
+        ::_exit(2);
+      }
+      ::_exit(0);
+    }
+    // Kill as soon as the temporary file appears, plus a growing delay.
+    const auto start = std::chrono::steady_clock::now();
+    while (!fs::exists(path_ + ".saving") &&
+           std::chrono::steady_clock::now() - start < std::chrono::seconds(10)) {
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5 * attempt));
+    ::kill(child, SIGKILL);
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    const Map loaded = LoadMap(path_);
+    if (fs::exists(path_ + ".saving")) {  // the rename never happened
+      ++killed_mid_save;
+      ExpectMapsEqual(previous, loaded);
+    } else {  // the child finished first: the new map must be complete
+      ExpectMapsEqual(big, loaded);
+      SaveMap(previous, path_);
+    }
+  }
+  EXPECT_GE(killed_mid_save, 1) << "the save always finished before the kill";
+}
+
+TEST_F(MapStoreTest, DifferentFeatureTypeIsRejected) {
+  SaveMap(testing::MakeTestMap(2), path_);
+  MapLoadOptions options;
+  options.expected_feature_type = "sift";
+  ExpectLoadError("built with feature type 'surf', expected 'sift'", options);
+  options.expected_feature_type = "surf";
+  EXPECT_NO_THROW(LoadMap(path_, options));
+}
+
+TEST_F(MapStoreTest, UnknownSchemaVersionIsRejected) {
+  SaveMap(testing::MakeTestMap(2), path_);
+  Tamper("UPDATE meta SET value = '7' WHERE key = 'schema_version'");
+  ExpectLoadError("schema version 7 is not supported");
+}
+
+TEST_F(MapStoreTest, TruncatedFileIsRejected) {
+  SaveMap(testing::MakeTestMap(20, 200), path_);
+  const auto size = fs::file_size(path_);
+  fs::resize_file(path_, size / 2);
+  ExpectLoadError("truncated map file");
+  fs::resize_file(path_, 50);
+  ExpectLoadError("not an SQLite database, or truncated");
+}
+
+TEST_F(MapStoreTest, CorruptedFileIsRejected) {
+  SaveMap(testing::MakeTestMap(20, 200), path_);
+  {
+    std::fstream file(path_, std::ios::in | std::ios::out | std::ios::binary);
+    file.seekp(static_cast<std::streamoff>(fs::file_size(path_) / 2));
+    const std::string garbage(3000, '\x5a');
+    file.write(garbage.data(), garbage.size());
+  }
+  try {
+    LoadMap(path_);
+    FAIL() << "a corrupted map loaded";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(path_), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(MapStoreTest, InconsistentRowsAreRejected) {
+  SaveMap(testing::MakeTestMap(2), path_);
+  Tamper("UPDATE nodes SET keypoints = x'0102' WHERE id = 2");
+  ExpectLoadError("node 2 keypoints");
+  SaveMap(testing::MakeTestMap(2), path_);
+  Tamper("DELETE FROM links WHERE to_id = 2 AND from_id = 1");
+  ExpectLoadError("row counts differ");
+}
+
+TEST_F(MapStoreTest, MissingOrForeignFileIsRejected) {
+  ExpectLoadError("no such map file");
+  std::ofstream(path_) << std::string(200, 'x');
+  ExpectLoadError("not a duskmap map");
+  fs::remove(path_);
+  Tamper("CREATE TABLE other(x)");
+  ExpectLoadError("not a duskmap map (no meta table)");
+}
+
+}  // namespace
+}  // namespace duskmap
