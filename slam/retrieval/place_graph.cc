@@ -1,0 +1,135 @@
+#include "slam/retrieval/place_graph.h"
+
+#include <algorithm>
+#include <deque>
+
+#include "slam/core/check.h"
+
+namespace duskmap {
+namespace {
+// -1: not traversed; otherwise the margin the link adds.
+int LinkCost(LinkType type) {
+  switch (type) {
+    case LinkType::kOdometry:
+    case LinkType::kMerged: return 1;
+    case LinkType::kLoopClosure: return 0;
+    case LinkType::kProximity: return -1;
+  }
+  return -1;
+}
+}  // namespace
+
+PlaceGraph::PlaceGraph(int max_margin) : max_margin_(max_margin) {
+  SLAM_THROW_IF_NOT(ConfigError, max_margin >= 0)
+      << "PlaceGraph: max_margin must be >= 0, got " << max_margin;
+}
+
+const PlaceGraph::Entry& PlaceGraph::At(NodeId node) const {
+  auto it = nodes_.find(node);
+  SLAM_THROW_IF_NOT(InputError, it != nodes_.end()) << "PlaceGraph: unknown node " << node;
+  return it->second;
+}
+
+void PlaceGraph::AddNode(NodeId node, SessionId session) {
+  SLAM_THROW_IF_NOT(InputError, !Contains(node)) << "PlaceGraph: node " << node << " already added";
+  Entry entry;
+  entry.session = session;
+  entry.version = next_version_++;
+  nodes_.emplace(node, std::move(entry));
+}
+
+void PlaceGraph::AddLink(NodeId a, NodeId b, LinkType type) {
+  At(a);
+  At(b);
+  if (a == b) return;
+  auto& edges_a = nodes_.at(a).edges;
+  const bool exists = std::any_of(edges_a.begin(), edges_a.end(), [&](const Edge& e) {
+    return e.other == b && e.type == type;
+  });
+  if (exists) return;
+  edges_a.push_back({b, type});
+  nodes_.at(b).edges.push_back({a, type});
+  if (LinkCost(type) < 0) return;  // proximity links change no neighbourhood
+  // Every node whose neighbourhood can change is within max_margin of a or b
+  // in the new graph (margins are symmetric).
+  Invalidate(Search(a));
+  Invalidate(Search(b));
+}
+
+bool PlaceGraph::RemoveNode(NodeId node) {
+  auto it = nodes_.find(node);
+  if (it == nodes_.end()) return false;
+  Invalidate(Search(node));
+  for (const Edge& e : it->second.edges) {
+    auto& other = nodes_.at(e.other).edges;
+    other.erase(std::remove_if(other.begin(), other.end(),
+                               [node](const Edge& x) { return x.other == node; }),
+                other.end());
+  }
+  nodes_.erase(node);
+  return true;
+}
+
+SessionId PlaceGraph::Session(NodeId node) const { return At(node).session; }
+
+uint64_t PlaceGraph::Version(NodeId node) const { return At(node).version; }
+
+void PlaceGraph::Invalidate(const std::vector<NodeMargin>& nodes) {
+  for (const NodeMargin& m : nodes) {
+    Entry& e = nodes_.at(m.node);
+    e.cached = false;
+    e.neighbourhood.clear();
+    e.version = next_version_++;
+  }
+}
+
+// 0-1 breadth-first search (loop-closure links cost 0, odometry links 1).
+std::vector<NodeMargin> PlaceGraph::Search(NodeId start) const {
+  std::unordered_map<NodeId, int> margin{{start, 0}};
+  std::deque<NodeId> queue{start};
+  while (!queue.empty()) {
+    const NodeId n = queue.front();
+    queue.pop_front();
+    const int m = margin.at(n);
+    for (const Edge& e : nodes_.at(n).edges) {
+      const int cost = LinkCost(e.type);
+      if (cost < 0 || m + cost > max_margin_) continue;
+      auto found = margin.find(e.other);
+      if (found != margin.end() && found->second <= m + cost) continue;
+      margin[e.other] = m + cost;
+      if (cost == 0) {
+        queue.push_front(e.other);
+      } else {
+        queue.push_back(e.other);
+      }
+    }
+  }
+  std::vector<NodeMargin> out;
+  out.reserve(margin.size());
+  for (const auto& [id, m] : margin) out.push_back({id, m});
+  std::sort(out.begin(), out.end(), [](const NodeMargin& x, const NodeMargin& y) {
+    return x.margin != y.margin ? x.margin < y.margin : x.node < y.node;
+  });
+  return out;
+}
+
+const std::vector<NodeMargin>& PlaceGraph::Neighbourhood(NodeId node) const {
+  const Entry& e = At(node);
+  if (!e.cached) {
+    e.neighbourhood = Search(node);
+    e.cached = true;
+  }
+  return e.neighbourhood;
+}
+
+std::vector<NodeId> PlaceGraph::OdometryNeighbours(NodeId node) const {
+  std::vector<NodeId> out;
+  for (const Edge& e : At(node).edges) {
+    if (e.type == LinkType::kOdometry || e.type == LinkType::kMerged) out.push_back(e.other);
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+}  // namespace duskmap

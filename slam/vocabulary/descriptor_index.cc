@@ -1,0 +1,383 @@
+#include "slam/vocabulary/descriptor_index.h"
+
+#include <algorithm>
+#include <unordered_map>
+
+#include <flann/flann.hpp>
+
+#include "slam/core/check.h"
+
+namespace duskmap {
+namespace {
+
+constexpr int kNeighbours = 2;
+
+// Type-erased FLANN index over row pointers owned by DescriptorIndex::Backend.
+class FlannHolder {
+ public:
+  virtual ~FlannHolder() = default;
+  // Adds one row; FLANN rebuilds inside when rows_at_build * factor < rows.
+  virtual void AddRow(const void* row, float rebuild_factor) = 0;
+  virtual void RemoveRow(size_t flann_id) = 0;
+  virtual void BuildNow() = 0;
+  // k nearest of one query row; ids are FLANN ids, distances as floats.
+  virtual int Knn(const void* query, int k, int checks, size_t* ids, float* dists) const = 0;
+};
+
+template <typename Dist>
+class FlannHolderT : public FlannHolder {
+ public:
+  using Element = typename Dist::ElementType;
+  using Result = typename Dist::ResultType;
+
+  FlannHolderT(const flann::IndexParams& params, int cols, const void* first_row, uint32_t seed)
+      : cols_(cols), seed_(seed) {
+    flann::Matrix<Element> m(const_cast<Element*>(static_cast<const Element*>(first_row)), 1,
+                             cols);
+    index_ = std::make_unique<flann::Index<Dist>>(m, params);
+    BuildNow();
+  }
+  void AddRow(const void* row, float rebuild_factor) override {
+    flann::Matrix<Element> m(const_cast<Element*>(static_cast<const Element*>(row)), 1, cols_);
+    flann::seed_random(seed_);
+    index_->addPoints(m, rebuild_factor);
+  }
+  void RemoveRow(size_t flann_id) override { index_->removePoint(flann_id); }
+  void BuildNow() override {
+    flann::seed_random(seed_);
+    index_->buildIndex();
+  }
+  int Knn(const void* query, int k, int checks, size_t* ids, float* dists) const override {
+    flann::Matrix<Element> q(const_cast<Element*>(static_cast<const Element*>(query)), 1, cols_);
+    flann::Matrix<size_t> indices(ids, 1, k);
+    Result raw[kNeighbours];
+    flann::Matrix<Result> distances(raw, 1, k);
+    flann::SearchParams params(checks);
+    for (int i = 0; i < k; ++i) {
+      ids[i] = static_cast<size_t>(-1);
+      raw[i] = Result();
+    }
+    const int found = index_->knnSearch(q, indices, distances, k, params);
+    for (int i = 0; i < k; ++i) dists[i] = static_cast<float>(raw[i]);
+    return found;
+  }
+
+ private:
+  int cols_;
+  uint32_t seed_;
+  std::unique_ptr<flann::Index<Dist>> index_;
+};
+
+}  // namespace
+
+const char* IndexKindName(IndexKind kind) {
+  switch (kind) {
+    case IndexKind::kKdTree: return "kdtree";
+    case IndexKind::kBitKdTree: return "bit_kdtree";
+    case IndexKind::kLsh: return "lsh";
+    case IndexKind::kHierarchical: return "hierarchical";
+    case IndexKind::kLinear: return "linear";
+  }
+  return "unknown";
+}
+
+IndexKind ParseIndexKind(const std::string& name) {
+  for (IndexKind k : {IndexKind::kKdTree, IndexKind::kBitKdTree, IndexKind::kLsh,
+                      IndexKind::kHierarchical, IndexKind::kLinear}) {
+    if (name == IndexKindName(k)) return k;
+  }
+  throw ConfigError("index kind '" + name +
+                    "' unknown (kdtree, bit_kdtree, lsh, hierarchical, linear)");
+}
+
+void DescriptorIndexOptions::Check() const {
+  SLAM_THROW_IF_NOT(ConfigError, float_kind == IndexKind::kKdTree || float_kind == IndexKind::kLinear)
+      << "DescriptorIndexOptions.float_kind: " << IndexKindName(float_kind)
+      << " is for binary descriptors (use kdtree or linear)";
+  SLAM_THROW_IF_NOT(ConfigError, binary_kind != IndexKind::kKdTree)
+      << "DescriptorIndexOptions.binary_kind: kdtree needs float rows (use bit_kdtree)";
+  SLAM_THROW_IF_NOT(ConfigError, kd_trees >= 1) << "DescriptorIndexOptions.kd_trees must be >= 1, got " << kd_trees;
+  SLAM_THROW_IF_NOT(ConfigError, checks >= 1) << "DescriptorIndexOptions.checks must be >= 1, got " << checks;
+  SLAM_THROW_IF_NOT(ConfigError, rebalancing_factor > 1.0)
+      << "DescriptorIndexOptions.rebalancing_factor must be > 1, got " << rebalancing_factor;
+  SLAM_THROW_IF_NOT(ConfigError, lsh_tables >= 1) << "DescriptorIndexOptions.lsh_tables must be >= 1, got " << lsh_tables;
+  SLAM_THROW_IF_NOT(ConfigError, lsh_key_bits >= 1 && lsh_key_bits <= 32)
+      << "DescriptorIndexOptions.lsh_key_bits must be in [1, 32], got " << lsh_key_bits;
+  SLAM_THROW_IF_NOT(ConfigError, lsh_multi_probe >= 0)
+      << "DescriptorIndexOptions.lsh_multi_probe must be >= 0, got " << lsh_multi_probe;
+  SLAM_THROW_IF_NOT(ConfigError, hierarchical_branching >= 2)
+      << "DescriptorIndexOptions.hierarchical_branching must be >= 2, got " << hierarchical_branching;
+  SLAM_THROW_IF_NOT(ConfigError, hierarchical_trees >= 1)
+      << "DescriptorIndexOptions.hierarchical_trees must be >= 1, got " << hierarchical_trees;
+  SLAM_THROW_IF_NOT(ConfigError, hierarchical_leaf_size >= 1)
+      << "DescriptorIndexOptions.hierarchical_leaf_size must be >= 1, got " << hierarchical_leaf_size;
+}
+
+// Owns the rows (descriptor and, for bit_kdtree, the expanded floats) and the
+// FLANN index pointing at them.
+class DescriptorIndex::Backend {
+ public:
+  Backend(const DescriptorIndexOptions& options, DescriptorKind kind, int cols)
+      : options_(options), kind_(kind), cols_(cols),
+        index_kind_(kind == DescriptorKind::kFloat ? options.float_kind : options.binary_kind),
+        row_bytes_(kind == DescriptorKind::kFloat ? cols * sizeof(float) : cols) {}
+
+  struct Row {
+    std::unique_ptr<uint8_t[]> descriptor;
+    std::unique_ptr<float[]> expanded;  // bit_kdtree only
+    size_t flann_id = 0;
+    size_t slot = 0;                    // linear only: position in linear_rows_
+  };
+
+  IndexKind index_kind() const { return index_kind_; }
+  size_t row_bytes() const { return row_bytes_; }
+  int rebuild_count() const { return rebuilds_; }
+  size_t size() const { return rows_.size(); }
+
+  bool Contains(WordId w) const { return rows_.count(w) != 0; }
+  const uint8_t* Descriptor(WordId w) const {
+    auto it = rows_.find(w);
+    SLAM_CHECK(it != rows_.end());
+    return it->second.descriptor.get();
+  }
+
+  void Add(WordId word, const uint8_t* data) {
+    SLAM_CHECK(word > 0 && !Contains(word));
+    Row row;
+    row.descriptor.reset(new uint8_t[row_bytes_]);
+    std::copy(data, data + row_bytes_, row.descriptor.get());
+    if (index_kind_ == IndexKind::kBitKdTree) row.expanded = ExpandBits(data);
+    if (index_kind_ == IndexKind::kLinear) {
+      row.slot = linear_words_.size();
+      linear_words_.push_back(word);
+      linear_rows_.insert(linear_rows_.end(), data, data + row_bytes_);
+    } else {
+      row.flann_id = flann_to_word_.size();
+      flann_to_word_.push_back(word);
+      AddToFlann(FlannRow(row));
+    }
+    rows_.emplace(word, std::move(row));
+  }
+
+  bool Remove(WordId word) {
+    auto it = rows_.find(word);
+    if (it == rows_.end()) return false;
+    if (index_kind_ == IndexKind::kLinear) {
+      RemoveLinear(it->second.slot);
+      rows_.erase(it);
+      return true;
+    }
+    flann_->RemoveRow(it->second.flann_id);
+    flann_to_word_[it->second.flann_id] = kNoWord;
+    graveyard_.push_back(std::move(it->second));  // FLANN may still read it until a rebuild
+    rows_.erase(it);
+    if (rows_.empty()) Reset();
+    return true;
+  }
+
+  void Search(const uint8_t* queries, int n, std::vector<std::vector<WordNeighbour>>* out) const {
+    out->assign(n, {});
+    if (rows_.empty()) return;
+    for (int q = 0; q < n; ++q) {
+      const uint8_t* query = queries + q * row_bytes_;
+      if (index_kind_ == IndexKind::kLinear) {
+        SearchLinear(query, &(*out)[q]);
+      } else {
+        SearchFlann(query, &(*out)[q]);
+      }
+    }
+  }
+
+  void Rebuild() {
+    if (flann_ == nullptr) return;
+    flann_->BuildNow();
+    AfterBuild(rows_.size());
+  }
+
+  size_t MemoryBytes() const {
+    const size_t n = rows_.size() + graveyard_.size();
+    size_t bytes = n * (row_bytes_ + sizeof(Row) + 2 * sizeof(void*) + 16);  // + hash node, malloc
+    if (index_kind_ == IndexKind::kBitKdTree) bytes += n * (cols_ * 8 * sizeof(float) + 16);
+    bytes += flann_to_word_.capacity() * sizeof(WordId) + linear_rows_.capacity() +
+             linear_words_.capacity() * sizeof(WordId);
+    // FLANN: a row pointer and an id per row, plus the structure itself.
+    bytes += n * (sizeof(void*) + sizeof(size_t));
+    switch (index_kind_) {
+      case IndexKind::kKdTree:
+      case IndexKind::kBitKdTree:  // ~2 nodes per row per tree (leaf + split), 32 bytes each
+        bytes += n * options_.kd_trees * 2 * 32;
+        break;
+      case IndexKind::kLsh:  // one 4-byte index per row per table
+        bytes += n * options_.lsh_tables * sizeof(uint32_t);
+        break;
+      case IndexKind::kHierarchical:  // a (index, pointer) pair per row per tree
+        bytes += n * options_.hierarchical_trees * 16;
+        break;
+      case IndexKind::kLinear:
+        break;
+    }
+    return bytes;
+  }
+
+ private:
+  std::unique_ptr<float[]> ExpandBits(const uint8_t* data) const {
+    std::unique_ptr<float[]> bits(new float[cols_ * 8]);
+    for (int b = 0; b < cols_; ++b) {
+      for (int k = 0; k < 8; ++k) bits[b * 8 + k] = (data[b] >> k) & 1 ? 1.0f : 0.0f;
+    }
+    return bits;
+  }
+  const void* FlannRow(const Row& row) const {
+    return row.expanded ? static_cast<const void*>(row.expanded.get())
+                        : static_cast<const void*>(row.descriptor.get());
+  }
+
+  void AddToFlann(const void* row) {
+    // The row being added is not in rows_ yet, hence the + 1 below.
+    if (flann_ == nullptr) {
+      flann_ = CreateFlann(row);
+      AfterBuild(rows_.size() + 1);
+      return;
+    }
+    ++flann_rows_;
+    // Mirrors FLANN's own test in addPoints (removed rows count until a build).
+    const bool rebuilds = size_at_build_ * options_.rebalancing_factor < flann_rows_;
+    flann_->AddRow(row, static_cast<float>(options_.rebalancing_factor));
+    if (rebuilds) AfterBuild(rows_.size() + 1);
+  }
+
+  void AfterBuild(size_t live_rows) {
+    ++rebuilds_;
+    size_at_build_ = live_rows;
+    flann_rows_ = live_rows;
+    graveyard_.clear();
+  }
+
+  std::unique_ptr<FlannHolder> CreateFlann(const void* first_row) const {
+    const uint32_t seed = options_.seed;
+    switch (index_kind_) {
+      case IndexKind::kKdTree:
+        return std::make_unique<FlannHolderT<flann::L2<float>>>(
+            flann::KDTreeIndexParams(options_.kd_trees), cols_, first_row, seed);
+      case IndexKind::kBitKdTree:
+        return std::make_unique<FlannHolderT<flann::L1<float>>>(
+            flann::KDTreeIndexParams(options_.kd_trees), cols_ * 8, first_row, seed);
+      case IndexKind::kLsh:
+        return std::make_unique<FlannHolderT<flann::Hamming<unsigned char>>>(
+            flann::LshIndexParams(options_.lsh_tables, options_.lsh_key_bits,
+                                  options_.lsh_multi_probe),
+            cols_, first_row, seed);
+      case IndexKind::kHierarchical:
+        return std::make_unique<FlannHolderT<flann::Hamming<unsigned char>>>(
+            flann::HierarchicalClusteringIndexParams(options_.hierarchical_branching,
+                                                     flann::FLANN_CENTERS_RANDOM,
+                                                     options_.hierarchical_trees,
+                                                     options_.hierarchical_leaf_size),
+            cols_, first_row, seed);
+      case IndexKind::kLinear:
+        break;
+    }
+    SLAM_CHECK(false);
+    return nullptr;
+  }
+
+  void SearchFlann(const uint8_t* query, std::vector<WordNeighbour>* out) const {
+    std::unique_ptr<float[]> expanded;
+    const void* q = query;
+    if (index_kind_ == IndexKind::kBitKdTree) {
+      expanded = ExpandBits(query);
+      q = expanded.get();
+    }
+    size_t ids[kNeighbours];
+    float dists[kNeighbours];
+    const int k = static_cast<int>(std::min<size_t>(kNeighbours, rows_.size()));
+    const int found = flann_->Knn(q, k, options_.checks, ids, dists);
+    for (int i = 0; i < found && i < k; ++i) {
+      if (ids[i] >= flann_to_word_.size()) continue;  // FLANN marks "none" with -1
+      const WordId w = flann_to_word_[ids[i]];
+      if (w == kNoWord) continue;
+      out->push_back({w, dists[i]});
+    }
+  }
+
+  void SearchLinear(const uint8_t* query, std::vector<WordNeighbour>* out) const {
+    WordNeighbour best[kNeighbours];
+    int count = 0;
+    for (size_t s = 0; s < linear_words_.size(); ++s) {
+      const float d = DescriptorDistance(kind_, query, &linear_rows_[s * row_bytes_], cols_);
+      const WordNeighbour cand{linear_words_[s], d};
+      auto closer = [](const WordNeighbour& a, const WordNeighbour& b) {
+        return a.distance < b.distance || (a.distance == b.distance && a.word < b.word);
+      };
+      if (count < kNeighbours) {
+        best[count++] = cand;
+        if (count == 2 && closer(best[1], best[0])) std::swap(best[0], best[1]);
+      } else if (closer(cand, best[1])) {
+        best[1] = cand;
+        if (closer(best[1], best[0])) std::swap(best[0], best[1]);
+      }
+    }
+    out->assign(best, best + count);
+  }
+
+  void RemoveLinear(size_t slot) {
+    const size_t last = linear_words_.size() - 1;
+    if (slot != last) {
+      std::copy_n(&linear_rows_[last * row_bytes_], row_bytes_, &linear_rows_[slot * row_bytes_]);
+      linear_words_[slot] = linear_words_[last];
+      rows_.at(linear_words_[slot]).slot = slot;
+    }
+    linear_words_.pop_back();
+    linear_rows_.resize(last * row_bytes_);
+  }
+
+  // The last word left: drop FLANN entirely; the next Add starts a new index.
+  void Reset() {
+    flann_.reset();
+    graveyard_.clear();
+    flann_to_word_.clear();
+    size_at_build_ = 0;
+    flann_rows_ = 0;
+  }
+
+  DescriptorIndexOptions options_;
+  DescriptorKind kind_;
+  int cols_;
+  IndexKind index_kind_;
+  size_t row_bytes_;
+  std::unordered_map<WordId, Row> rows_;
+  std::vector<Row> graveyard_;
+  std::vector<WordId> flann_to_word_;  // FLANN id (insertion order) -> word, kNoWord once removed
+  std::unique_ptr<FlannHolder> flann_;
+  size_t size_at_build_ = 0;
+  size_t flann_rows_ = 0;  // rows FLANN holds, removed-but-not-yet-cleaned included
+  int rebuilds_ = 0;
+  std::vector<uint8_t> linear_rows_;  // linear only: contiguous rows
+  std::vector<WordId> linear_words_;
+};
+
+DescriptorIndex::DescriptorIndex(const DescriptorIndexOptions& options, DescriptorKind kind,
+                                 int cols)
+    : kind_(kind), cols_(cols) {
+  options.Check();
+  SLAM_THROW_IF_NOT(InputError, cols > 0) << "DescriptorIndex: descriptor width must be > 0";
+  backend_ = std::make_unique<Backend>(options, kind, cols);
+}
+DescriptorIndex::~DescriptorIndex() = default;
+
+size_t DescriptorIndex::row_bytes() const { return backend_->row_bytes(); }
+IndexKind DescriptorIndex::index_kind() const { return backend_->index_kind(); }
+void DescriptorIndex::Add(WordId word, const uint8_t* row) { backend_->Add(word, row); }
+bool DescriptorIndex::Remove(WordId word) { return backend_->Remove(word); }
+bool DescriptorIndex::Contains(WordId word) const { return backend_->Contains(word); }
+const uint8_t* DescriptorIndex::Descriptor(WordId word) const { return backend_->Descriptor(word); }
+void DescriptorIndex::SearchTwoNearest(const uint8_t* queries, int rows,
+                                       std::vector<std::vector<WordNeighbour>>* out) const {
+  backend_->Search(queries, rows, out);
+}
+void DescriptorIndex::Rebuild() { backend_->Rebuild(); }
+size_t DescriptorIndex::size() const { return backend_->size(); }
+int DescriptorIndex::rebuild_count() const { return backend_->rebuild_count(); }
+size_t DescriptorIndex::MemoryBytes() const { return backend_->MemoryBytes(); }
+
+}  // namespace duskmap

@@ -1,0 +1,98 @@
+// Nearest-neighbour index over the descriptors of the visual words, with
+// incremental insertion and removal (reference: corelib/src/FlannIndex.cpp).
+// The index owns the word descriptors; FLANN keeps pointers to them, so a
+// removed word's row stays allocated until the next rebuild drops it.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "slam/vocabulary/word_types.h"
+
+namespace duskmap {
+
+enum class IndexKind {
+  kKdTree,        // FLANN randomized KD-trees, L2 (float) — reference Kp/NNStrategy=1
+  kBitKdTree,     // binary only: bits expanded to 0/1 floats, KD-trees with L1 (= Hamming),
+                  // as the reference does for binary descriptors with Kp/NNStrategy=1
+  kLsh,           // binary only: FLANN multi-probe LSH (Kp/NNStrategy=2)
+  kHierarchical,  // binary only: FLANN hierarchical clustering with Hamming
+  kLinear,        // exact brute force (float or binary); for tests and small maps
+};
+
+const char* IndexKindName(IndexKind kind);
+// Parses "kdtree", "bit_kdtree", "lsh", "hierarchical", "linear"; throws ConfigError.
+IndexKind ParseIndexKind(const std::string& name);
+
+struct DescriptorIndexOptions {
+  IndexKind float_kind = IndexKind::kKdTree;    // index used for float descriptors
+  IndexKind binary_kind = IndexKind::kHierarchical;  // index used for binary descriptors
+  int kd_trees = 4;               // randomized KD-trees (reference: 4)
+  int checks = 32;                // leaves checked per search (reference KNN_CHECKS: 32)
+  double rebalancing_factor = 2.0;  // rebuild when rows >= factor x rows at last build
+  int lsh_tables = 12;            // LSH hash tables (reference: 12)
+  int lsh_key_bits = 20;          // LSH key size, bits (reference: 20)
+  int lsh_multi_probe = 2;        // LSH multi-probe level (reference: 2)
+  int hierarchical_branching = 32;  // hierarchical clustering branching factor
+  int hierarchical_trees = 4;       // hierarchical clustering trees
+  int hierarchical_leaf_size = 100; // hierarchical clustering max leaf size, rows
+  uint32_t seed = 42;             // seeds FLANN's random choices before every build
+
+  void Check() const;
+};
+
+// One neighbour found by a search: the word and its distance (squared L2 or
+// Hamming, see DescriptorDistance).
+struct WordNeighbour {
+  WordId word = kNoWord;
+  float distance = 0.0f;
+};
+
+class DescriptorIndex {
+ public:
+  // `cols`: elements per row (128 floats for SIFT, 32 bytes for ORB).
+  DescriptorIndex(const DescriptorIndexOptions& options, DescriptorKind kind, int cols);
+  ~DescriptorIndex();
+  DescriptorIndex(const DescriptorIndex&) = delete;
+  DescriptorIndex& operator=(const DescriptorIndex&) = delete;
+
+  DescriptorKind kind() const { return kind_; }
+  int cols() const { return cols_; }
+  size_t row_bytes() const;
+  IndexKind index_kind() const;
+
+  // Copies `row` (row_bytes() bytes) and indexes it under `word`, which must
+  // not be present. Rebuilds when the index has doubled since its last build.
+  void Add(WordId word, const uint8_t* row);
+  // Removes `word` from the searchable set. Returns false when absent.
+  bool Remove(WordId word);
+  bool Contains(WordId word) const;
+  // The stored descriptor of a present word.
+  const uint8_t* Descriptor(WordId word) const;
+
+  // Up to two nearest live words of each query row (`queries`: rows x
+  // row_bytes(), contiguous). out->size() == rows on return.
+  void SearchTwoNearest(const uint8_t* queries, int rows,
+                        std::vector<std::vector<WordNeighbour>>* out) const;
+
+  // Rebuilds every tree from the live words now (a "batch" build).
+  void Rebuild();
+
+  size_t size() const;          // live words
+  int rebuild_count() const;    // full builds so far (first build included)
+  // Bytes held: descriptors, expanded rows, FLANN bookkeeping and trees
+  // (trees estimated from their node counts), id maps.
+  size_t MemoryBytes() const;
+
+  class Backend;
+
+ private:
+  DescriptorKind kind_;
+  int cols_;
+  std::unique_ptr<Backend> backend_;
+};
+
+}  // namespace duskmap
