@@ -1,5 +1,6 @@
 #include "slam/features/opencv_extractors.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "slam/core/check.h"
@@ -17,6 +18,8 @@ OpenCvExtractor::OpenCvExtractor(std::string name, cv::Ptr<cv::Feature2D> featur
 
 void OpenCvExtractor::DetectAndDescribe(const cv::Mat& gray, std::vector<cv::KeyPoint>* keypoints,
                                         cv::Mat* descriptors) const {
+  // OpenCV's pyramids assert on images that vanish at their coarsest level.
+  if (std::min(gray.cols, gray.rows) < kMinImageSidePx) return;
   feature_->detect(gray, *keypoints);
   // Limit before describing (the reference's limitKeypoints), strongest first.
   cv::Mat none;

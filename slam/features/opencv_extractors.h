@@ -10,6 +10,9 @@ namespace duskmap {
 
 class OpenCvExtractor : public FeatureExtractor {
  public:
+  // Smaller images give no features (OpenCV's pyramids fail on them).
+  static constexpr int kMinImageSidePx = 64;
+
   // `root_sift` post-processes float descriptors (L1 normalise, square root).
   OpenCvExtractor(std::string name, cv::Ptr<cv::Feature2D> feature, DescriptorKind kind,
                   int max_features, double max_depth_m, bool root_sift = false);
