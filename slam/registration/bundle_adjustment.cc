@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <optional>
 
 #include <ceres/ceres.h>
@@ -144,6 +145,13 @@ std::optional<std::vector<int>> SolveAndSelect(const LocalBundleAdjustmentOption
       BuildProblem(options, c, active, node_camera, query_camera, state, &problem);
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::DENSE_SCHUR;
+  // Points are eliminated first; giving the ordering skips Ceres's search for
+  // an independent set.
+  auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
+  for (int k : active) ordering->AddElementToGroup(state->points[k].data(), 0);
+  ordering->AddElementToGroup(state->rotation.coeffs().data(), 1);
+  ordering->AddElementToGroup(state->translation.data(), 1);
+  solver.linear_solver_ordering = ordering;
   solver.max_num_iterations = iterations;
   solver.num_threads = 1;
   solver.logging_type = ceres::SILENT;

@@ -1,7 +1,9 @@
 #include "slam/registration/nndr_matcher.h"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <unordered_map>
 
 #include <Eigen/Core>
@@ -51,8 +53,44 @@ std::vector<TwoNearest> BruteForceFloat(const cv::Mat& query, const cv::Mat& tra
   return result;
 }
 
+// 2-NN over rows of `words` 64-bit words (ORB/BRIEF: 4 words).
+inline __attribute__((always_inline)) void ScanHammingWords(const uint64_t* q, int query_rows,
+                                                            const uint64_t* t, int train_rows,
+                                                            int words,
+                                                            std::vector<TwoNearest>* result) {
+  for (int i = 0; i < query_rows; ++i) {
+    const uint64_t* a = q + static_cast<size_t>(i) * words;
+    for (int j = 0; j < train_rows; ++j) {
+      const uint64_t* b = t + static_cast<size_t>(j) * words;
+      int distance = 0;
+      for (int w = 0; w < words; ++w) distance += __builtin_popcountll(a[w] ^ b[w]);
+      Offer(j, distance, &(*result)[i]);
+    }
+  }
+}
+
+// The same scan compiled with the POPCNT instruction (used when the CPU has it).
+__attribute__((target("popcnt"))) void ScanHammingWordsPopcnt(
+    const uint64_t* q, int query_rows, const uint64_t* t, int train_rows, int words,
+    std::vector<TwoNearest>* result) {
+  ScanHammingWords(q, query_rows, t, train_rows, words, result);
+}
+
 std::vector<TwoNearest> BruteForceBinary(const cv::Mat& query, const cv::Mat& train) {
   std::vector<TwoNearest> result(query.rows);
+  if (query.cols % 8 == 0) {  // rows of whole 64-bit words
+    const int words = query.cols / 8;
+    std::vector<uint64_t> q(static_cast<size_t>(query.rows) * words);
+    std::vector<uint64_t> t(static_cast<size_t>(train.rows) * words);
+    std::memcpy(q.data(), query.data, q.size() * sizeof(uint64_t));
+    std::memcpy(t.data(), train.data, t.size() * sizeof(uint64_t));
+    if (__builtin_cpu_supports("popcnt")) {
+      ScanHammingWordsPopcnt(q.data(), query.rows, t.data(), train.rows, words, &result);
+    } else {
+      ScanHammingWords(q.data(), query.rows, t.data(), train.rows, words, &result);
+    }
+    return result;
+  }
   for (int i = 0; i < query.rows; ++i) {
     const uchar* a = query.ptr<uchar>(i);
     for (int j = 0; j < train.rows; ++j) {

@@ -30,7 +30,7 @@ struct NndrMatcherOptions {
   double float_ratio = 0.6;   // on squared L2 distance (paper's runs with float descriptors)
   double binary_ratio = 0.8;  // on Hamming distance (paper's runs with binary descriptors)
   NndrSearch search = NndrSearch::kAuto;
-  int kd_min_train_size = 256;  // kAuto uses the KD-tree from this many map features on
+  int kd_min_train_size = 5000;  // kAuto uses the KD-tree from this many map features on
   int kd_trees = 4;             // FLANN randomized trees (reference: 4)
   int kd_checks = 32;           // FLANN leaf checks per query (reference: 32)
   bool unique = true;           // the uniqueness filter of spec 6.2

@@ -210,6 +210,7 @@ RegistrationResult EstimateTransform(const RegistrationOptions& options,
   const PnpResult first_pnp = RunPnp(options, first, query_camera);
   result.timings.pnp_ms = watch.ElapsedMs();
   result.inliers_first_pass = static_cast<int>(first_pnp.inliers.size());
+  result.ransac_trials = first_pnp.num_trials;
   if (!first_pnp.success) {
     result.status = RegistrationStatus::kPnpFailed;
     return finish();
@@ -243,6 +244,7 @@ RegistrationResult EstimateTransform(const RegistrationOptions& options,
   const PnpResult second_pnp = RunPnp(options, second, query_camera);
   result.timings.second_pass_ms = watch.ElapsedMs();
   result.inliers_second_pass = static_cast<int>(second_pnp.inliers.size());
+  result.ransac_trials += second_pnp.num_trials;
   if (!second_pnp.success) {
     result.status = RegistrationStatus::kSecondPassPnpFailed;
     return finish();

@@ -82,6 +82,7 @@ struct RegistrationResult {
   int matches_second_pass = 0;  // 0 when the second pass did not run
   int inliers_second_pass = 0;
   bool second_pass_ran = false;
+  int ransac_trials = 0;        // minimal samples drawn, both passes
   // Final inliers: queryIdx into the query features, trainIdx into the map node's.
   std::vector<cv::DMatch> inlier_matches;
   double linear_variance_m2 = 0.0;
