@@ -6,6 +6,7 @@
 #include <flann/flann.hpp>
 
 #include "slam/core/check.h"
+#include "slam/vocabulary/kd_forest.h"
 
 namespace duskmap {
 namespace {
@@ -94,6 +95,8 @@ void DescriptorIndexOptions::Check() const {
   SLAM_THROW_IF_NOT(ConfigError, float_kind == IndexKind::kKdTree || float_kind == IndexKind::kLinear)
       << "DescriptorIndexOptions.float_kind: " << IndexKindName(float_kind)
       << " is for binary descriptors (use kdtree or linear)";
+  SLAM_THROW_IF_NOT(ConfigError, kd_leaf_size >= 1)
+      << "DescriptorIndexOptions.kd_leaf_size must be >= 1, got " << kd_leaf_size;
   SLAM_THROW_IF_NOT(ConfigError, binary_kind != IndexKind::kKdTree)
       << "DescriptorIndexOptions.binary_kind: kdtree needs float rows (use bit_kdtree)";
   SLAM_THROW_IF_NOT(ConfigError, kd_trees >= 1) << "DescriptorIndexOptions.kd_trees must be >= 1, got " << kd_trees;
@@ -113,29 +116,39 @@ void DescriptorIndexOptions::Check() const {
       << "DescriptorIndexOptions.hierarchical_leaf_size must be >= 1, got " << hierarchical_leaf_size;
 }
 
-// Owns the rows (descriptor and, for bit_kdtree, the expanded floats) and the
-// FLANN index pointing at them.
+// Owns the rows and the index over them: KdForest (KD-tree kinds), FLANN
+// (LSH, hierarchical: FLANN keeps pointers to the rows) or a linear scan.
 class DescriptorIndex::Backend {
  public:
   Backend(const DescriptorIndexOptions& options, DescriptorKind kind, int cols)
       : options_(options), kind_(kind), cols_(cols),
         index_kind_(kind == DescriptorKind::kFloat ? options.float_kind : options.binary_kind),
-        row_bytes_(kind == DescriptorKind::kFloat ? cols * sizeof(float) : cols) {}
+        row_bytes_(kind == DescriptorKind::kFloat ? cols * sizeof(float) : cols) {
+    if (index_kind_ == IndexKind::kKdTree || index_kind_ == IndexKind::kBitKdTree) {
+      KdForestOptions o;
+      o.trees = options.kd_trees;
+      o.checks = options.checks;
+      o.leaf_size = options.kd_leaf_size;
+      o.rebuild_factor = options.rebalancing_factor;
+      o.seed = options.seed;
+      forest_ = std::make_unique<KdForest>(o, kind, cols);
+    }
+  }
 
   struct Row {
     std::unique_ptr<uint8_t[]> descriptor;
-    std::unique_ptr<float[]> expanded;  // bit_kdtree only
     size_t flann_id = 0;
     size_t slot = 0;                    // linear only: position in linear_rows_
   };
 
   IndexKind index_kind() const { return index_kind_; }
   size_t row_bytes() const { return row_bytes_; }
-  int rebuild_count() const { return rebuilds_; }
-  size_t size() const { return rows_.size(); }
+  int rebuild_count() const { return forest_ ? forest_->rebuild_count() : rebuilds_; }
+  size_t size() const { return forest_ ? forest_->size() : rows_.size(); }
 
-  bool Contains(WordId w) const { return rows_.count(w) != 0; }
+  bool Contains(WordId w) const { return forest_ ? forest_->Contains(w) : rows_.count(w) != 0; }
   const uint8_t* Descriptor(WordId w) const {
+    if (forest_) return forest_->Row(w);
     auto it = rows_.find(w);
     SLAM_CHECK(it != rows_.end());
     return it->second.descriptor.get();
@@ -143,10 +156,13 @@ class DescriptorIndex::Backend {
 
   void Add(WordId word, const uint8_t* data) {
     SLAM_CHECK(word > 0 && !Contains(word));
+    if (forest_) {
+      forest_->Add(word, data);
+      return;
+    }
     Row row;
     row.descriptor.reset(new uint8_t[row_bytes_]);
     std::copy(data, data + row_bytes_, row.descriptor.get());
-    if (index_kind_ == IndexKind::kBitKdTree) row.expanded = ExpandBits(data);
     if (index_kind_ == IndexKind::kLinear) {
       row.slot = linear_words_.size();
       linear_words_.push_back(word);
@@ -160,6 +176,7 @@ class DescriptorIndex::Backend {
   }
 
   bool Remove(WordId word) {
+    if (forest_) return forest_->Remove(word);
     auto it = rows_.find(word);
     if (it == rows_.end()) return false;
     if (index_kind_ == IndexKind::kLinear) {
@@ -177,10 +194,15 @@ class DescriptorIndex::Backend {
 
   void Search(const uint8_t* queries, int n, std::vector<std::vector<WordNeighbour>>* out) const {
     out->assign(n, {});
-    if (rows_.empty()) return;
+    std::vector<KdNeighbour> found;
     for (int q = 0; q < n; ++q) {
       const uint8_t* query = queries + q * row_bytes_;
-      if (index_kind_ == IndexKind::kLinear) {
+      if (forest_) {
+        forest_->SearchTwo(query, &found);
+        for (const KdNeighbour& k : found) (*out)[q].push_back({k.id, k.distance});
+      } else if (rows_.empty()) {
+        continue;
+      } else if (index_kind_ == IndexKind::kLinear) {
         SearchLinear(query, &(*out)[q]);
       } else {
         SearchFlann(query, &(*out)[q]);
@@ -189,48 +211,38 @@ class DescriptorIndex::Backend {
   }
 
   void Rebuild() {
+    if (forest_) {
+      forest_->Rebuild();
+      return;
+    }
     if (flann_ == nullptr) return;
     flann_->BuildNow();
     AfterBuild(rows_.size());
   }
 
   size_t MemoryBytes() const {
+    if (forest_) return forest_->MemoryBytes();
     const size_t n = rows_.size() + graveyard_.size();
     size_t bytes = n * (row_bytes_ + sizeof(Row) + 2 * sizeof(void*) + 16);  // + hash node, malloc
-    if (index_kind_ == IndexKind::kBitKdTree) bytes += n * (cols_ * 8 * sizeof(float) + 16);
     bytes += flann_to_word_.capacity() * sizeof(WordId) + linear_rows_.capacity() +
              linear_words_.capacity() * sizeof(WordId);
     // FLANN: a row pointer and an id per row, plus the structure itself.
     bytes += n * (sizeof(void*) + sizeof(size_t));
     switch (index_kind_) {
-      case IndexKind::kKdTree:
-      case IndexKind::kBitKdTree:  // ~2 nodes per row per tree (leaf + split), 32 bytes each
-        bytes += n * options_.kd_trees * 2 * 32;
-        break;
       case IndexKind::kLsh:  // one 4-byte index per row per table
         bytes += n * options_.lsh_tables * sizeof(uint32_t);
         break;
       case IndexKind::kHierarchical:  // a (index, pointer) pair per row per tree
         bytes += n * options_.hierarchical_trees * 16;
         break;
-      case IndexKind::kLinear:
+      default:
         break;
     }
     return bytes;
   }
 
  private:
-  std::unique_ptr<float[]> ExpandBits(const uint8_t* data) const {
-    std::unique_ptr<float[]> bits(new float[cols_ * 8]);
-    for (int b = 0; b < cols_; ++b) {
-      for (int k = 0; k < 8; ++k) bits[b * 8 + k] = (data[b] >> k) & 1 ? 1.0f : 0.0f;
-    }
-    return bits;
-  }
-  const void* FlannRow(const Row& row) const {
-    return row.expanded ? static_cast<const void*>(row.expanded.get())
-                        : static_cast<const void*>(row.descriptor.get());
-  }
+  const void* FlannRow(const Row& row) const { return row.descriptor.get(); }
 
   void AddToFlann(const void* row) {
     // The row being added is not in rows_ yet, hence the + 1 below.
@@ -256,12 +268,6 @@ class DescriptorIndex::Backend {
   std::unique_ptr<FlannHolder> CreateFlann(const void* first_row) const {
     const uint32_t seed = options_.seed;
     switch (index_kind_) {
-      case IndexKind::kKdTree:
-        return std::make_unique<FlannHolderT<flann::L2<float>>>(
-            flann::KDTreeIndexParams(options_.kd_trees), cols_, first_row, seed);
-      case IndexKind::kBitKdTree:
-        return std::make_unique<FlannHolderT<flann::L1<float>>>(
-            flann::KDTreeIndexParams(options_.kd_trees), cols_ * 8, first_row, seed);
       case IndexKind::kLsh:
         return std::make_unique<FlannHolderT<flann::Hamming<unsigned char>>>(
             flann::LshIndexParams(options_.lsh_tables, options_.lsh_key_bits,
@@ -274,7 +280,7 @@ class DescriptorIndex::Backend {
                                                      options_.hierarchical_trees,
                                                      options_.hierarchical_leaf_size),
             cols_, first_row, seed);
-      case IndexKind::kLinear:
+      default:
         break;
     }
     SLAM_CHECK(false);
@@ -282,12 +288,7 @@ class DescriptorIndex::Backend {
   }
 
   void SearchFlann(const uint8_t* query, std::vector<WordNeighbour>* out) const {
-    std::unique_ptr<float[]> expanded;
     const void* q = query;
-    if (index_kind_ == IndexKind::kBitKdTree) {
-      expanded = ExpandBits(query);
-      q = expanded.get();
-    }
     size_t ids[kNeighbours];
     float dists[kNeighbours];
     const int k = static_cast<int>(std::min<size_t>(kNeighbours, rows_.size()));
@@ -354,6 +355,7 @@ class DescriptorIndex::Backend {
   int rebuilds_ = 0;
   std::vector<uint8_t> linear_rows_;  // linear only: contiguous rows
   std::vector<WordId> linear_words_;
+  std::unique_ptr<KdForest> forest_;  // kdtree / bit_kdtree
 };
 
 DescriptorIndex::DescriptorIndex(const DescriptorIndexOptions& options, DescriptorKind kind,

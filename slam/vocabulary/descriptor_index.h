@@ -2,6 +2,7 @@
 // incremental insertion and removal (reference: corelib/src/FlannIndex.cpp).
 // The index owns the word descriptors; FLANN keeps pointers to them, so a
 // removed word's row stays allocated until the next rebuild drops it.
+// KD-tree kinds use the own deterministic KdForest (kd_forest.h).
 #pragma once
 
 #include <cstddef>
@@ -15,11 +16,13 @@
 namespace duskmap {
 
 enum class IndexKind {
-  kKdTree,        // FLANN randomized KD-trees, L2 (float) — reference Kp/NNStrategy=1
-  kBitKdTree,     // binary only: bits expanded to 0/1 floats, KD-trees with L1 (= Hamming),
-                  // as the reference does for binary descriptors with Kp/NNStrategy=1
-  kLsh,           // binary only: FLANN multi-probe LSH (Kp/NNStrategy=2)
-  kHierarchical,  // binary only: FLANN hierarchical clustering with Hamming
+  kKdTree,        // float only: seeded randomized KD-trees (KdForest), squared L2 —
+                  // reference Kp/NNStrategy=1
+  kBitKdTree,     // binary only: KdForest over the bits (one dimension per bit), Hamming —
+                  // the reference's byte-to-bits KD-tree with L1, Kp/NNStrategy=1
+  kLsh,           // binary only: FLANN multi-probe LSH (Kp/NNStrategy=2); NOT deterministic
+                  // (Debian's FLANN shuffles with std::random_device)
+  kHierarchical,  // binary only: FLANN hierarchical clustering, Hamming; NOT deterministic
   kLinear,        // exact brute force (float or binary); for tests and small maps
 };
 
@@ -29,9 +32,10 @@ IndexKind ParseIndexKind(const std::string& name);
 
 struct DescriptorIndexOptions {
   IndexKind float_kind = IndexKind::kKdTree;    // index used for float descriptors
-  IndexKind binary_kind = IndexKind::kHierarchical;  // index used for binary descriptors
+  IndexKind binary_kind = IndexKind::kBitKdTree;  // index used for binary descriptors
   int kd_trees = 4;               // randomized KD-trees (reference: 4)
-  int checks = 32;                // leaves checked per search (reference KNN_CHECKS: 32)
+  int kd_leaf_size = 4;           // rows per KD-tree leaf before it splits (FLANN: 1)
+  int checks = 32;                // rows compared per search (reference KNN_CHECKS: 32)
   double rebalancing_factor = 2.0;  // rebuild when rows >= factor x rows at last build
   int lsh_tables = 12;            // LSH hash tables (reference: 12)
   int lsh_key_bits = 20;          // LSH key size, bits (reference: 20)
@@ -39,7 +43,7 @@ struct DescriptorIndexOptions {
   int hierarchical_branching = 32;  // hierarchical clustering branching factor
   int hierarchical_trees = 4;       // hierarchical clustering trees
   int hierarchical_leaf_size = 100; // hierarchical clustering max leaf size, rows
-  uint32_t seed = 42;             // seeds FLANN's random choices before every build
+  uint32_t seed = 42;             // seeds the KD-trees' random choices (and srand for FLANN)
 
   void Check() const;
 };

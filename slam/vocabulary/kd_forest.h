@@ -1,0 +1,89 @@
+// Randomized KD-trees with incremental insertion, lazy removal and a rebuild
+// when the number of rows has doubled since the last build: the structure of
+// FLANN's KDTreeIndex as RTAB-Map uses it (spec §2.3), reimplemented because
+// Debian's FLANN shuffles with std::random_device and therefore builds
+// different trees on every run (measured: two identical vocabularies diverge
+// after a few frames). Every random choice here comes from a seeded Rng.
+//
+// Float rows are compared with squared L2. Binary rows are treated as bit
+// vectors (one dimension per bit, as the reference's byte-to-bits expansion)
+// and compared with Hamming distance directly on the packed bytes.
+#pragma once
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "slam/core/random.h"
+#include "slam/vocabulary/word_types.h"
+
+namespace duskmap {
+
+struct KdForestOptions {
+  int trees = 4;                 // randomized trees (reference: 4)
+  int checks = 32;               // leaf rows compared per search (reference KNN_CHECKS: 32)
+  int leaf_size = 1;             // rows per leaf before it splits (FLANN: 1)
+  double rebuild_factor = 2.0;   // rebuild when rows (removed included) > factor x rows at build
+  uint64_t seed = 42;            // all random choices (shuffles, split dimensions)
+};
+
+struct KdNeighbour {
+  WordId id = kNoWord;
+  float distance = 0.0f;
+};
+
+class KdForest {
+ public:
+  // `cols`: floats (float kind) or bytes (binary kind) per row.
+  KdForest(const KdForestOptions& options, DescriptorKind kind, int cols);
+
+  void Add(WordId id, const uint8_t* row);  // id must be new
+  bool Remove(WordId id);                   // false when absent
+  bool Contains(WordId id) const { return slot_.count(id) != 0; }
+  // Valid until the next Add or Rebuild.
+  const uint8_t* Row(WordId id) const;
+  // Up to 2 nearest live rows, nearest first.
+  void SearchTwo(const uint8_t* query, std::vector<KdNeighbour>* out) const;
+  // Drops removed rows and builds every tree again.
+  void Rebuild();
+
+  size_t size() const { return slot_.size(); }
+  int rebuild_count() const { return rebuilds_; }
+  size_t MemoryBytes() const;
+
+ private:
+  struct Node {
+    int32_t dim = -1;         // -1: leaf
+    float split = 0.0f;
+    int32_t child[2] = {-1, -1};
+    int32_t leaf = -1;        // index into leaves_
+  };
+  float Value(uint32_t p, int dim) const;
+  float QueryValue(const uint8_t* q, int dim) const;
+  float Distance(const uint8_t* q, uint32_t p) const;
+  int32_t Divide(std::vector<uint32_t>* idx, size_t begin, size_t end);
+  int32_t MakeLeaf(const std::vector<uint32_t>& idx, size_t begin, size_t end);
+  void Insert(int tree, uint32_t p);
+  void Descend(int32_t node, const uint8_t* q, float mindist, int* checks,
+               std::vector<std::pair<float, int32_t>>* heap, KdNeighbour best[2], int* found) const;
+  const uint8_t* Data(uint32_t p) const { return &data_[static_cast<size_t>(p) * row_bytes_]; }
+
+  KdForestOptions options_;
+  DescriptorKind kind_;
+  int cols_;
+  int dims_;
+  size_t row_bytes_;
+  Rng rng_;
+  std::vector<uint8_t> data_;           // rows by point index
+  std::vector<WordId> ids_;             // point -> id (kNoWord once removed)
+  std::unordered_map<WordId, uint32_t> slot_;  // id -> point
+  std::vector<Node> nodes_;
+  std::vector<std::vector<uint32_t>> leaves_;
+  std::vector<int32_t> roots_;
+  size_t rows_at_build_ = 0;
+  int rebuilds_ = 0;
+  mutable std::vector<uint32_t> visited_;  // per point: stamp of the last search that compared it
+  mutable uint32_t stamp_ = 0;
+};
+
+}  // namespace duskmap
