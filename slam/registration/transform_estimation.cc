@@ -66,7 +66,7 @@ void ValidateInputs(const RegistrationOptions& options, const FrameFeatures& map
   CheckComparable(map_node, query);
 }
 
-// One PnP RANSAC pass; fills the pass counters and returns the inlier subset.
+// One PnP RANSAC pass over a pass's correspondences.
 PnpResult RunPnp(const RegistrationOptions& options, const Correspondences& c,
                  const PinholeCamera& query_camera) {
   return EstimatePnpRansac(options.pnp, c.points_in_node, c.pixels_in_query, query_camera);
@@ -131,6 +131,39 @@ void RefineAndFinish(const RegistrationOptions& options, const FrameFeatures& ma
   result->linear_variance_m2 = covariance.linear_variance_m2;
   result->angular_variance = covariance.angular_variance;
   result->information = covariance.information;
+}
+
+// Step 3: guided matching around the projections under the first estimate,
+// then PnP RANSAC again. Returns false, with result->status set, on rejection.
+bool RunSecondPass(const RegistrationOptions& options, const FrameFeatures& map_node,
+                   const FrameFeatures& query, const PinholeCamera& query_camera,
+                   const Rigid3d& query_from_node, Correspondences* second, PnpResult* pnp,
+                   RegistrationResult* result) {
+  const Stopwatch watch;
+  result->second_pass_ran = true;
+  *second = Collect(MatchInProjectionWindow(options.GuidedMatching(), map_node, query,
+                                            query_camera, query_from_node),
+                    map_node, query);
+  result->matches_second_pass = static_cast<int>(second->matches.size());
+  if (result->matches_second_pass < options.min_inliers) {
+    result->timings.second_pass_ms = watch.ElapsedMs();
+    result->status = RegistrationStatus::kSecondPassTooFewMatches;
+    return false;
+  }
+  *pnp = RunPnp(options, *second, query_camera);
+  result->timings.second_pass_ms = watch.ElapsedMs();
+  result->inliers_second_pass = static_cast<int>(pnp->inliers.size());
+  result->ransac_trials += pnp->num_trials;
+  if (!pnp->success) {
+    result->status = RegistrationStatus::kSecondPassPnpFailed;
+    return false;
+  }
+  if (result->inliers_second_pass < options.min_inliers) {
+    result->num_inliers = result->inliers_second_pass;
+    result->status = RegistrationStatus::kSecondPassTooFewInliers;
+    return false;
+  }
+  return true;
 }
 
 }  // namespace
@@ -229,29 +262,10 @@ RegistrationResult EstimateTransform(const RegistrationOptions& options,
                     &result);
     return finish();
   }
-  watch.Restart();
-  result.second_pass_ran = true;
-  const Correspondences second =
-      Collect(MatchInProjectionWindow(options.GuidedMatching(), map_node, query, query_camera,
-                                      first_pnp.camera_from_points),
-              map_node, query);
-  result.matches_second_pass = static_cast<int>(second.matches.size());
-  if (result.matches_second_pass < options.min_inliers) {
-    result.timings.second_pass_ms = watch.ElapsedMs();
-    result.status = RegistrationStatus::kSecondPassTooFewMatches;
-    return finish();
-  }
-  const PnpResult second_pnp = RunPnp(options, second, query_camera);
-  result.timings.second_pass_ms = watch.ElapsedMs();
-  result.inliers_second_pass = static_cast<int>(second_pnp.inliers.size());
-  result.ransac_trials += second_pnp.num_trials;
-  if (!second_pnp.success) {
-    result.status = RegistrationStatus::kSecondPassPnpFailed;
-    return finish();
-  }
-  if (result.inliers_second_pass < options.min_inliers) {
-    result.num_inliers = result.inliers_second_pass;
-    result.status = RegistrationStatus::kSecondPassTooFewInliers;
+  Correspondences second;
+  PnpResult second_pnp;
+  if (!RunSecondPass(options, map_node, query, query_camera, first_pnp.camera_from_points,
+                     &second, &second_pnp, &result)) {
     return finish();
   }
   RefineAndFinish(options, map_node, map_camera, query, query_camera, second, second_pnp,
