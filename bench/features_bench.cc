@@ -5,9 +5,6 @@
 // (the reference measured single-threaded too). Report medians:
 //   build-feat/bench/features_bench --benchmark_repetitions=7
 //       --benchmark_report_aggregates_only=true
-// The paper's Hessian threshold (100) finds fewer than 1000 SURF keypoints on
-// this frame, so surf and daisy are also timed with threshold 10 ("@1000"),
-// which reaches the 1000-feature cap.
 // SuperPoint is timed when DUSKMAP_SUPERPOINT_ONNX names a model file.
 #include <cstdlib>
 #include <string>
@@ -46,11 +43,10 @@ const cv::Mat& Frame() {
   return kFrame;
 }
 
-void BM_Extract(benchmark::State& state, const std::string& type, double hessian_threshold) {
+void BM_Extract(benchmark::State& state, const std::string& type) {
   cv::setNumThreads(1);
   FeatureOptions options;
   options.type = type;
-  if (hessian_threshold > 0.0) options.surf.hessian_threshold = hessian_threshold;
   if (type == "superpoint") options.superpoint.model_path = std::getenv("DUSKMAP_SUPERPOINT_ONNX");
   const auto extractor = CreateFeatureExtractor(options);
   size_t keypoints = 0;
@@ -65,12 +61,7 @@ void BM_Extract(benchmark::State& state, const std::string& type, double hessian
 const bool kRegistered = [] {
   for (const std::string& type : FeatureTypeNames()) {
     if (type == "superpoint" && std::getenv("DUSKMAP_SUPERPOINT_ONNX") == nullptr) continue;
-    benchmark::RegisterBenchmark(("Extract/" + type).c_str(), BM_Extract, type, 0.0)
-        ->Unit(benchmark::kMillisecond)
-        ->UseRealTime();
-  }
-  for (const std::string type : {"surf", "daisy"}) {
-    benchmark::RegisterBenchmark(("Extract/" + type + "@1000").c_str(), BM_Extract, type, 10.0)
+    benchmark::RegisterBenchmark(("Extract/" + type).c_str(), BM_Extract, type)
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime();
   }

@@ -41,7 +41,10 @@ void SampleHistogram(const cv::Mat& map, float x, float y, int channels, float* 
 void NormalizeHistogram(float* h, int n) {
   double norm = 0.0;
   for (int i = 0; i < n; ++i) norm += static_cast<double>(h[i]) * h[i];
-  if (norm <= 1e-20) return;
+  if (norm <= 1e-20) {  // flat region: no gradient direction at all
+    std::fill(h, h + n, 0.0f);
+    return;
+  }
   const float inv = static_cast<float>(1.0 / std::sqrt(norm));
   for (int i = 0; i < n; ++i) h[i] *= inv;
 }

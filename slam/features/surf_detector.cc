@@ -27,7 +27,11 @@ struct BoxFilter {
   std::array<Box, 2> dxx, dyy;
   std::array<Box, 4> dxy;
   int size = 0;
-  float inv_area = 0.0f;
+  // Each response is a difference of box means (sum / box area), as in
+  // OpenCV's SURF, so that hessian_threshold keeps the reference's scale
+  // (the paper's 100 is a threshold on OpenCV's responses).
+  float inv_lobe_area_dd = 0.0f;  // dxx, dyy lobes: lobe x (2 lobe - 1)
+  float inv_lobe_area_dxy = 0.0f;  // dxy quadrants: lobe x lobe
 };
 
 BoxFilter::Box MakeBox(int x0, int y0, int x1, int y1, float weight, int stride) {
@@ -40,7 +44,8 @@ BoxFilter MakeBoxFilter(int size, int stride) {
   const int band0 = (lobe + 1) / 2, band1 = band0 + 2 * lobe - 1;
   BoxFilter f;
   f.size = size;
-  f.inv_area = 1.0f / static_cast<float>(size * size);
+  f.inv_lobe_area_dd = 1.0f / static_cast<float>(lobe * (2 * lobe - 1));
+  f.inv_lobe_area_dxy = 1.0f / static_cast<float>(lobe * lobe);
   // Dyy: +1 over three stacked lobes, -3 over the middle one (net +1 -2 +1).
   f.dyy = {MakeBox(band0, 0, band1, size, 1.0f, stride),
            MakeBox(band0, lobe, band1, 2 * lobe, -3.0f, stride)};
@@ -81,9 +86,9 @@ void ComputeResponseLayer(const IntegralImage& integral, int size, int step, int
     float* out_row = out + static_cast<size_t>(j) * cols;
     for (int i = i0; i < i1; ++i) {
       const uint32_t* origin = row_origin + (i * step - half);
-      const float dxx = ApplyBoxes(origin, f.dxx) * f.inv_area;
-      const float dyy = ApplyBoxes(origin, f.dyy) * f.inv_area;
-      const float dxy = ApplyBoxes(origin, f.dxy) * f.inv_area;
+      const float dxx = ApplyBoxes(origin, f.dxx) * f.inv_lobe_area_dd;
+      const float dyy = ApplyBoxes(origin, f.dyy) * f.inv_lobe_area_dd;
+      const float dxy = ApplyBoxes(origin, f.dxy) * f.inv_lobe_area_dxy;
       out_row[i] = dxx * dyy - 0.81f * dxy * dxy;
     }
   }
