@@ -9,7 +9,7 @@ namespace duskmap {
 namespace {
 
 // 3D-2D correspondences of one pass, restricted to finite map points and
-// finite query keypoints.
+// finite keypoints on both sides.
 struct Correspondences {
   std::vector<cv::DMatch> matches;
   std::vector<Eigen::Vector3d> points_in_node;
@@ -28,7 +28,7 @@ Correspondences Collect(const std::vector<cv::DMatch>& matches, const FrameFeatu
     SLAM_CHECK(m.trainIdx >= 0 && m.trainIdx < static_cast<int>(map_node.size()));
     if (!map_node.HasPoint(m.trainIdx)) continue;
     const Eigen::Vector2d pixel = Pixel(query.keypoints[m.queryIdx]);
-    if (!pixel.allFinite()) continue;
+    if (!pixel.allFinite() || !Pixel(map_node.keypoints[m.trainIdx]).allFinite()) continue;
     c.matches.push_back(m);
     c.points_in_node.push_back(map_node.points_in_camera[m.trainIdx].cast<double>());
     c.pixels_in_query.push_back(pixel);

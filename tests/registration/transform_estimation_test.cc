@@ -165,6 +165,20 @@ TEST(EstimateTransform, NonFiniteMapPointsAreIgnored) {
   EXPECT_TRUE(none.node_from_query.IsFinite());
 }
 
+TEST(EstimateTransform, NonFiniteKeypointsAreIgnored) {
+  SyntheticPair pair = MakeSyntheticPair({});
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (size_t i = 0; i < pair.map_node.size(); i += 4) pair.map_node.keypoints[i].pt.x = nan;
+  for (size_t i = 1; i < pair.query.size(); i += 4) pair.query.keypoints[i].pt.y = nan;
+  const RegistrationResult result = Estimate(pair);
+  ASSERT_TRUE(result.accepted()) << RegistrationStatusName(result.status);
+  ExpectPoseNear(pair.node_from_query, result.node_from_query, 0.01, 0.5);
+  for (const cv::DMatch& m : result.inlier_matches) {
+    EXPECT_FALSE(std::isnan(pair.map_node.keypoints[m.trainIdx].pt.x));
+    EXPECT_FALSE(std::isnan(pair.query.keypoints[m.queryIdx].pt.y));
+  }
+}
+
 TEST(EstimateTransform, ZeroFeaturesGiveNoFeaturesStatus) {
   const SyntheticPair pair = MakeSyntheticPair({});
   const FrameFeatures empty;
