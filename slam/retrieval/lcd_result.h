@@ -47,8 +47,7 @@ struct LcdResult {
   int new_words = 0;
   int num_candidates = 0;      // places compared with
   int num_scored = 0;          // places sharing at least one word
-  size_t vocabulary_words = 0;
-  size_t vocabulary_bytes = 0;
+  size_t vocabulary_words = 0;  // (bytes: Vocabulary::MemoryBytes, not per frame: it walks the index)
   LcdTimings timings;
 
   bool accepted() const { return status == LcdStatus::kAccepted; }

@@ -104,7 +104,6 @@ LcdResult LoopClosureDetector::Detect(const NodeQuantization& q, bool query_in_i
       std::count_if(q.words.begin(), q.words.end(), [](WordId w) { return w > 0; }));
   result.num_candidates = static_cast<int>(filter_.num_places());
   result.vocabulary_words = vocabulary_.num_words();
-  result.vocabulary_bytes = vocabulary_.MemoryBytes();
   result.new_place_posterior = filter_.VirtualPosterior();
   last_likelihood_ = Likelihood();
   if (q.bad_signature) {

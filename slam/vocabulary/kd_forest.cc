@@ -197,7 +197,8 @@ void KdForest::SearchTwo(const uint8_t* query, std::vector<KdNeighbour>* out) co
   }
   KdNeighbour best[2];
   int found = 0, checks = 0;
-  std::vector<std::pair<float, int32_t>> heap;
+  std::vector<std::pair<float, int32_t>>& heap = heap_;
+  heap.clear();
   for (int32_t root : roots_) Descend(root, query, 0.0f, &checks, &heap, best, &found);
   while (!heap.empty() && (checks < options_.checks || found < 2)) {
     std::pop_heap(heap.begin(), heap.end(), std::greater<>());

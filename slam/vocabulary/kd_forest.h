@@ -84,6 +84,7 @@ class KdForest {
   int rebuilds_ = 0;
   mutable std::vector<uint32_t> visited_;  // per point: stamp of the last search that compared it
   mutable uint32_t stamp_ = 0;
+  mutable std::vector<std::pair<float, int32_t>> heap_;  // search scratch
 };
 
 }  // namespace duskmap

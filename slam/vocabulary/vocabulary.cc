@@ -1,6 +1,7 @@
 #include "slam/vocabulary/vocabulary.h"
 
 #include <algorithm>
+#include <limits>
 
 #include "slam/core/check.h"
 #include "slam/core/timer.h"
@@ -17,23 +18,25 @@ struct Candidate {
   float distance;
 };
 
-// Adds the two nearest pending words (this frame's new words) to `cands`.
-void AddPendingCandidates(DescriptorKind kind, int cols, const uint8_t* row,
-                          const std::vector<const uint8_t*>& pending,
-                          std::vector<Candidate>* cands) {
-  Candidate best[2] = {{kNoWord, 0.0f}, {kNoWord, 0.0f}};
-  int count = 0;
+// Merges the pending words (this frame's new words) into the two nearest
+// candidates `best[0..*count)` (sorted; index results first on ties). Only a
+// pending word closer than the current second candidate can matter, so
+// distances stop early at that bound.
+void MergePendingCandidates(DescriptorKind kind, int cols, const uint8_t* row,
+                            const std::vector<const uint8_t*>& pending, Candidate best[2],
+                            int* count) {
   for (size_t k = 0; k < pending.size(); ++k) {
-    const Candidate c{PendingId(k), DescriptorDistance(kind, row, pending[k], cols)};
-    if (count < 2) {
-      best[count++] = c;
-      if (count == 2 && best[1].distance < best[0].distance) std::swap(best[0], best[1]);
-    } else if (c.distance < best[1].distance) {
+    const float bound = *count < 2 ? std::numeric_limits<float>::infinity() : best[1].distance;
+    const float d = DescriptorDistanceBounded(kind, row, pending[k], cols, bound);
+    if (!(d < bound)) continue;
+    const Candidate c{PendingId(k), d};
+    if (*count < 2) {
+      best[(*count)++] = c;
+    } else {
       best[1] = c;
-      if (best[1].distance < best[0].distance) std::swap(best[0], best[1]);
     }
+    if (*count == 2 && best[1].distance < best[0].distance) std::swap(best[0], best[1]);
   }
-  cands->insert(cands->end(), best, best + count);
 }
 
 }  // namespace
@@ -95,22 +98,19 @@ NodeQuantization Vocabulary::Run(const cv::Mat& descriptors, DescriptorKind kind
   std::vector<std::vector<WordNeighbour>> nn;
   if (index_ != nullptr) index_->SearchTwoNearest(rows.ptr<uint8_t>(0), limit, &nn);
   std::vector<const uint8_t*> pending;
-  std::vector<Candidate> cands;
   for (int i = 0; i < limit; ++i) {
     const uint8_t* row = rows.ptr<uint8_t>(i);
-    cands.clear();
+    Candidate best[2] = {{kNoWord, 0.0f}, {kNoWord, 0.0f}};
+    int count = 0;
     if (index_ != nullptr) {
-      for (const WordNeighbour& n : nn[i]) cands.push_back({n.word, n.distance});
+      for (const WordNeighbour& n : nn[i]) best[count++] = {n.word, n.distance};  // sorted
     }
     if (options_.new_words_compared_together) {
-      AddPendingCandidates(kind, cols, row, pending, &cands);
+      MergePendingCandidates(kind, cols, row, pending, best, &count);
     }
-    std::stable_sort(cands.begin(), cands.end(), [](const Candidate& a, const Candidate& b) {
-      return a.distance < b.distance;
-    });
-    if (cands.size() >= 2 && cands[0].distance <= options_.nndr_ratio * cands[1].distance) {
-      q.words[i] = cands[0].word;
-      if (cands[0].word > 0) ++q.matched_words;
+    if (count >= 2 && best[0].distance <= options_.nndr_ratio * best[1].distance) {
+      q.words[i] = best[0].word;
+      if (best[0].word > 0) ++q.matched_words;
     } else {
       q.words[i] = PendingId(pending.size());
       pending.push_back(descriptors.ptr<uint8_t>(i));

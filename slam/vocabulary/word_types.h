@@ -17,5 +17,9 @@ constexpr WordId kNoWord = -1;
 // L2 for float rows (what FLANN returns), Hamming for binary rows.
 // `cols` is the number of elements (floats or bytes) of one row.
 float DescriptorDistance(DescriptorKind kind, const uint8_t* a, const uint8_t* b, int cols);
+// The same, but may stop early and return any value >= `bound` once the
+// distance is known to reach it (the exact distance when it is below).
+float DescriptorDistanceBounded(DescriptorKind kind, const uint8_t* a, const uint8_t* b, int cols,
+                                float bound);
 
 }  // namespace duskmap
