@@ -1,0 +1,72 @@
+#include "slam/io/calibration.h"
+
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "slam/core/check.h"
+#include "slam/core/json_fields.h"
+
+namespace duskmap {
+
+TumCalibration ReadCalibration(const std::string& path) {
+  nlohmann::json json;
+  try {
+    json = ReadJsonFile(path);
+  } catch (const ConfigError& e) {
+    throw InputError(e.what());
+  }
+  TumCalibration c;
+  try {
+    JsonFields f(json, path);
+    f.ReadRequired("width", &c.camera.width);
+    f.ReadRequired("height", &c.camera.height);
+    f.ReadRequired("fx", &c.camera.fx);
+    f.ReadRequired("fy", &c.camera.fy);
+    f.ReadRequired("cx", &c.camera.cx);
+    f.ReadRequired("cy", &c.camera.cy);
+    f.ReadRequired("depth_scale", &c.depth_scale);
+    f.RejectUnknown();
+  } catch (const ConfigError& e) {
+    throw InputError(e.what());
+  }
+  SLAM_THROW_IF_NOT(InputError, c.camera.IsValid()) << path << ": invalid intrinsics";
+  SLAM_THROW_IF_NOT(InputError, c.depth_scale > 0.0) << path << ": depth_scale must be > 0";
+  return c;
+}
+
+void WriteCalibration(const std::string& path, const TumCalibration& c) {
+  nlohmann::json json = {{"width", c.camera.width}, {"height", c.camera.height},
+                         {"fx", c.camera.fx},       {"fy", c.camera.fy},
+                         {"cx", c.camera.cx},       {"cy", c.camera.cy},
+                         {"depth_scale", c.depth_scale}};
+  std::ofstream out(path);
+  SLAM_THROW_IF_NOT(InputError, out.good()) << path << ": cannot write calibration";
+  out << json.dump(2) << "\n";
+  SLAM_THROW_IF_NOT(InputError, out.good()) << path << ": write failed";
+}
+
+TumCalibration DefaultTumCalibration(const std::string& folder_name) {
+  TumCalibration c;
+  c.depth_scale = 5000.0;
+  c.camera.width = 640;
+  c.camera.height = 480;
+  auto set = [&c](double fx, double fy, double cx, double cy) {
+    c.camera.fx = fx;
+    c.camera.fy = fy;
+    c.camera.cx = cx;
+    c.camera.cy = cy;
+  };
+  if (folder_name.find("freiburg1") != std::string::npos) {
+    set(517.3, 516.5, 318.6, 255.3);
+  } else if (folder_name.find("freiburg2") != std::string::npos) {
+    set(520.9, 521.0, 325.1, 249.7);
+  } else if (folder_name.find("freiburg3") != std::string::npos) {
+    set(535.4, 539.2, 320.1, 247.6);
+  } else {
+    set(525.0, 525.0, 319.5, 239.5);
+  }
+  return c;
+}
+
+}  // namespace duskmap

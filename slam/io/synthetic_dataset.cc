@@ -1,0 +1,100 @@
+#include "slam/io/synthetic_dataset.h"
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include <nlohmann/json.hpp>
+
+#include "slam/core/check.h"
+#include "slam/core/json_fields.h"
+#include "slam/io/tum_dataset.h"
+
+namespace duskmap {
+namespace {
+namespace fs = std::filesystem;
+
+class SyntheticDatasetReader : public DatasetReader {
+ public:
+  explicit SyntheticDatasetReader(const std::string& path)
+      : path_(path), manifest_(ReadManifest(path)) {
+    for (const ManifestSession& session : manifest_.sessions) {
+      infos_.push_back(OpenSession(session.name)->info());
+    }
+  }
+  std::string format() const override { return "synthetic"; }
+  std::vector<SessionInfo> Sessions() const override { return infos_; }
+  std::unique_ptr<SessionReader> OpenSession(const std::string& name) const override {
+    for (const ManifestSession& session : manifest_.sessions) {
+      if (session.name != name) continue;
+      SessionInfo info;
+      info.name = session.name;
+      info.clock_time = session.clock_time;
+      return OpenTumSession(path_ + "/" + session.folder, info);
+    }
+    throw InputError(path_ + ": no session named '" + name + "'");
+  }
+
+ private:
+  std::string path_;
+  DatasetManifest manifest_;
+  std::vector<SessionInfo> infos_;
+};
+
+}  // namespace
+
+void WriteManifest(const std::string& dataset_path, const DatasetManifest& manifest) {
+  nlohmann::json sessions = nlohmann::json::array();
+  for (const ManifestSession& s : manifest.sessions) {
+    sessions.push_back(
+        {{"name", s.name}, {"folder", s.folder}, {"clock_time", s.clock_time}, {"role", s.role}});
+  }
+  const nlohmann::json json = {{"format", kSyntheticFormat}, {"version", 1}, {"sessions", sessions}};
+  const std::string path = dataset_path + "/" + kManifestFileName;
+  std::ofstream out(path);
+  SLAM_THROW_IF_NOT(InputError, out.good()) << path << ": cannot write manifest";
+  out << json.dump(2) << "\n";
+  SLAM_THROW_IF_NOT(InputError, out.good()) << path << ": write failed";
+}
+
+DatasetManifest ReadManifest(const std::string& dataset_path) {
+  const std::string path = dataset_path + "/" + kManifestFileName;
+  SLAM_THROW_IF_NOT(InputError, fs::is_regular_file(path))
+      << path << ": missing (not a duskmap synthetic dataset)";
+  DatasetManifest manifest;
+  try {
+    JsonFields f(ReadJsonFile(path), path);
+    std::string format;
+    int version = 0;
+    f.ReadRequired("format", &format);
+    f.ReadRequired("version", &version);
+    SLAM_THROW_IF_NOT(InputError, format == kSyntheticFormat && version == 1)
+        << path << ": unsupported format '" << format << "' version " << version;
+    const nlohmann::json& sessions = f.Raw("sessions");
+    SLAM_THROW_IF_NOT(InputError, sessions.is_array() && !sessions.empty())
+        << path << ": 'sessions' must be a non-empty array";
+    std::set<std::string> names;
+    for (size_t i = 0; i < sessions.size(); ++i) {
+      JsonFields s(sessions[i], path + ":sessions[" + std::to_string(i) + "]");
+      ManifestSession session;
+      s.ReadRequired("name", &session.name);
+      s.ReadRequired("folder", &session.folder);
+      s.Read("clock_time", &session.clock_time);
+      s.Read("role", &session.role);
+      s.RejectUnknown();
+      SLAM_THROW_IF_NOT(InputError, names.insert(session.name).second)
+          << path << ": duplicate session '" << session.name << "'";
+      manifest.sessions.push_back(session);
+    }
+    f.RejectUnknown();
+  } catch (const ConfigError& e) {
+    throw InputError(e.what());
+  }
+  return manifest;
+}
+
+std::unique_ptr<DatasetReader> OpenSyntheticDataset(const std::string& path) {
+  return std::make_unique<SyntheticDatasetReader>(path);
+}
+
+}  // namespace duskmap

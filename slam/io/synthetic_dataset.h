@@ -1,0 +1,40 @@
+// The duskmap synthetic dataset layout: a folder with manifest.json listing
+// its sessions, each a TUM-layout subfolder (see tum_writer.h) with
+// odometry.txt, calibration.json and session.json (clock time, light states,
+// seed).
+//
+// manifest.json: {"format": "duskmap-synthetic", "version": 1,
+//                 "sessions": [{"name": "1", "folder": "1", "clock_time": "16:46",
+//                               "role": "mapping"}, ...]}
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "slam/io/dataset_reader.h"
+
+namespace duskmap {
+
+inline constexpr const char* kManifestFileName = "manifest.json";
+inline constexpr const char* kSyntheticFormat = "duskmap-synthetic";
+
+struct ManifestSession {
+  std::string name;        // "1".."6", "A".."F"
+  std::string folder;      // relative to the dataset folder
+  std::string clock_time;  // local "HH:MM"
+  std::string role;        // "mapping" or "localization"
+};
+
+struct DatasetManifest {
+  std::vector<ManifestSession> sessions;
+};
+
+void WriteManifest(const std::string& dataset_path, const DatasetManifest& manifest);
+// Throws InputError naming manifest.json and the problem.
+DatasetManifest ReadManifest(const std::string& dataset_path);
+
+// Opens a synthetic dataset; every listed session folder is validated now.
+std::unique_ptr<DatasetReader> OpenSyntheticDataset(const std::string& path);
+
+}  // namespace duskmap

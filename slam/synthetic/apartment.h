@@ -1,0 +1,42 @@
+// The default furnished apartment (about 90 m2): a living room with windows on
+// its west and south walls, an open kitchen, a corridor and a bedroom, with
+// furniture, pictures, posters, books and rugs, the docking picture on the
+// living-room north wall, and the lamps. Also the patrol route through it.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "slam/synthetic/scene.h"
+
+namespace duskmap {
+
+struct ApartmentOptions {
+  uint64_t seed = 7;           // texture seed
+  std::string textures_dir;    // optional folder of images for pictures/posters
+  double wall_height_m = 2.5;  // floor to ceiling
+  double lamp_intensity_scale = 1.0;  // multiplies every lamp's candela
+  std::string living_lamp_on_from = "17:54";  // clock time the living-room floor lamp goes on
+
+  void Check() const;
+};
+
+Scene BuildApartment(const ApartmentOptions& options);
+
+// One waypoint of the patrol route: walk to `position_xy`, then optionally
+// hold still or turn in place (positive = counter-clockwise seen from above).
+struct RouteWaypoint {
+  Eigen::Vector2d position_xy = Eigen::Vector2d::Zero();
+  double spin_deg = 0.0;  // in-place rotation after arriving
+  double hold_s = 0.0;    // standing still after arriving (after the spin)
+  double face_yaw_deg = std::numeric_limits<double>::quiet_NaN();  // turn to face this yaw when set
+};
+
+// The patrol route through every room; it starts and ends at the docking view.
+std::vector<RouteWaypoint> ApartmentPatrolRoute();
+
+}  // namespace duskmap

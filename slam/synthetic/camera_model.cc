@@ -1,0 +1,135 @@
+#include "slam/synthetic/camera_model.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <opencv2/imgproc.hpp>
+
+#include "slam/core/check.h"
+
+namespace duskmap {
+namespace {
+constexpr int kLutSize = 4096;
+constexpr int kMeterStride = 4;  // metering samples every 4th pixel in x and y
+}  // namespace
+
+PinholeCamera CameraModelOptions::Intrinsics() const {
+  PinholeCamera c;
+  c.width = width;
+  c.height = height;
+  c.fx = fx;
+  c.fy = fy;
+  c.cx = (width - 1) / 2.0;
+  c.cy = (height - 1) / 2.0;
+  return c;
+}
+
+void CameraModelOptions::Check() const {
+  SLAM_THROW_IF_NOT(ConfigError, width >= 16 && width <= 4096) << "camera.width must be in [16, 4096], got " << width;
+  SLAM_THROW_IF_NOT(ConfigError, height >= 16 && height <= 4096) << "camera.height must be in [16, 4096], got " << height;
+  SLAM_THROW_IF_NOT(ConfigError, fx > 0 && fy > 0) << "camera.fx and camera.fy must be > 0";
+  SLAM_THROW_IF_NOT(ConfigError, ae_target > 0.05 && ae_target < 0.95) << "camera.ae_target must be in (0.05, 0.95), got " << ae_target;
+  SLAM_THROW_IF_NOT(ConfigError, ae_speed > 0 && ae_speed <= 1) << "camera.ae_speed must be in (0, 1], got " << ae_speed;
+  SLAM_THROW_IF_NOT(ConfigError, min_exposure_s > 0 && max_exposure_s > min_exposure_s)
+      << "camera.min_exposure_s/max_exposure_s must satisfy 0 < min < max";
+  SLAM_THROW_IF_NOT(ConfigError, max_gain >= 1) << "camera.max_gain must be >= 1, got " << max_gain;
+  SLAM_THROW_IF_NOT(ConfigError, sensitivity > 0) << "camera.sensitivity must be > 0";
+  SLAM_THROW_IF_NOT(ConfigError, awb_speed > 0 && awb_speed <= 1) << "camera.awb_speed must be in (0, 1], got " << awb_speed;
+  SLAM_THROW_IF_NOT(ConfigError, awb_strength >= 0 && awb_strength <= 1) << "camera.awb_strength must be in [0, 1], got " << awb_strength;
+  SLAM_THROW_IF_NOT(ConfigError, photons_at_white > 0) << "camera.photons_at_white must be > 0";
+  SLAM_THROW_IF_NOT(ConfigError, read_noise >= 0) << "camera.read_noise must be >= 0";
+  SLAM_THROW_IF_NOT(ConfigError, blur_sigma_px >= 0 && blur_sigma_px <= 5) << "camera.blur_sigma_px must be in [0, 5]";
+  SLAM_THROW_IF_NOT(ConfigError, gamma >= 1 && gamma <= 3) << "camera.gamma must be in [1, 3], got " << gamma;
+  SLAM_THROW_IF_NOT(ConfigError, tone_contrast >= 0 && tone_contrast <= 0.5) << "camera.tone_contrast must be in [0, 0.5]";
+}
+
+CameraModel::CameraModel(const CameraModelOptions& options, uint64_t seed)
+    : options_(options), rng_(seed | 1) {
+  options_.Check();
+  tone_lut_.resize(kLutSize);
+  for (int i = 0; i < kLutSize; ++i) {
+    tone_lut_[i] = cv::saturate_cast<uint8_t>(Tone(i / (kLutSize - 1.0)) * 255.0);
+  }
+  SetExposure(options_.sensitivity * options_.max_exposure_s);
+}
+
+double CameraModel::Tone(double linear) const {
+  const double g = std::pow(std::clamp(linear, 0.0, 1.0), 1.0 / options_.gamma);
+  // Smooth S-curve around mid grey: g + c * g (1 - g) (2 g - 1).
+  return std::clamp(g + options_.tone_contrast * g * (1 - g) * (2 * g - 1) * 2.0, 0.0, 1.0);
+}
+
+void CameraModel::SetExposure(double exposure) {
+  const double lo = options_.sensitivity * options_.min_exposure_s;
+  const double hi = options_.sensitivity * options_.max_exposure_s * options_.max_gain;
+  state_.exposure = std::clamp(exposure, lo, hi);
+  const double time_s = state_.exposure / options_.sensitivity;
+  state_.exposure_time_s = std::min(time_s, options_.max_exposure_s);
+  state_.gain = std::max(1.0, time_s / options_.max_exposure_s);
+}
+
+void CameraModel::Meter(const cv::Mat& radiance) {
+  double sum_y = 0.0;
+  cv::Vec3d sum_c(0, 0, 0);
+  int n = 0, n_c = 0;
+  for (int r = kMeterStride / 2; r < radiance.rows; r += kMeterStride) {
+    const cv::Vec3f* row = radiance.ptr<cv::Vec3f>(r);
+    for (int c = kMeterStride / 2; c < radiance.cols; c += kMeterStride) {
+      cv::Vec3d v(row[c][0] * state_.wb_gains[0], row[c][1] * state_.wb_gains[1], row[c][2] * state_.wb_gains[2]);
+      v *= state_.exposure;
+      const double y = 0.0722 * v[0] + 0.7152 * v[1] + 0.2126 * v[2];
+      sum_y += Tone(y);
+      ++n;
+      if (v[0] < 0.98 && v[1] < 0.98 && v[2] < 0.98 && y > 0.002) {
+        sum_c += cv::Vec3d(row[c][0], row[c][1], row[c][2]);
+        ++n_c;
+      }
+    }
+  }
+  const double mean = n > 0 ? sum_y / n : options_.ae_target;
+  state_.last_mean_brightness = mean;
+  // Output brightness is roughly linear^(1/gamma): correct in the linear domain.
+  const double ratio = std::pow(options_.ae_target / std::max(mean, 1e-3), options_.gamma);
+  SetExposure(state_.exposure * std::exp(options_.ae_speed * std::log(ratio)));
+  if (n_c > 16 && sum_c[0] > 0 && sum_c[1] > 0 && sum_c[2] > 0) {
+    for (int k = 0; k < 3; ++k) {
+      const double target = std::clamp(std::pow(sum_c[1] / sum_c[k], options_.awb_strength), 0.4, 3.0);
+      state_.wb_gains[k] = std::exp(std::log(state_.wb_gains[k]) +
+                                    options_.awb_speed * (std::log(target) - std::log(state_.wb_gains[k])));
+    }
+  }
+}
+
+void CameraModel::Settle(const cv::Mat& radiance, int iterations) {
+  for (int i = 0; i < iterations; ++i) Meter(radiance);
+}
+
+cv::Mat CameraModel::Capture(const cv::Mat& radiance) {
+  SLAM_CHECK(radiance.type() == CV_32FC3);
+  cv::Mat linear;
+  const cv::Scalar scale(state_.exposure * state_.wb_gains[0], state_.exposure * state_.wb_gains[1],
+                         state_.exposure * state_.wb_gains[2]);
+  cv::multiply(radiance, scale, linear);
+  if (options_.blur_sigma_px > 0.0) cv::GaussianBlur(linear, linear, cv::Size(0, 0), options_.blur_sigma_px);
+  cv::Mat noise(linear.size(), CV_32FC3);
+  rng_.fill(noise, cv::RNG::NORMAL, 0.0, 1.0);
+  const float shot = static_cast<float>(state_.gain / options_.photons_at_white);
+  const float read = static_cast<float>(options_.read_noise * state_.gain);
+  const float read2 = read * read;
+  cv::Mat out(linear.size(), CV_8UC3);
+  for (int r = 0; r < linear.rows; ++r) {
+    const float* in = linear.ptr<float>(r);
+    const float* nz = noise.ptr<float>(r);
+    uint8_t* o = out.ptr<uint8_t>(r);
+    for (int i = 0; i < linear.cols * 3; ++i) {
+      const float x = std::min(in[i], 1.0f);
+      const float v = x + std::sqrt(shot * x + read2) * nz[i];
+      const int index = static_cast<int>(std::clamp(v, 0.0f, 1.0f) * (kLutSize - 1) + 0.5f);
+      o[i] = tone_lut_[index];
+    }
+  }
+  Meter(radiance);
+  return out;
+}
+
+}  // namespace duskmap

@@ -1,0 +1,73 @@
+// The colour camera: turns a radiance image (nits) into an 8-bit BGR image
+// the way a consumer RGB-D camera does, with state carried across frames:
+// auto-exposure with lag (metering the mean brightness of the previous
+// frame), grey-world auto white balance with lag and partial strength, optics
+// blur, shot and read noise that grow with analogue gain, a tone curve with
+// clipping and 8-bit quantisation. Seeded: the same inputs give the same bytes.
+#pragma once
+
+#include <cstdint>
+
+#include <opencv2/core.hpp>
+
+#include "slam/core/camera.h"
+
+namespace duskmap {
+
+struct CameraModelOptions {
+  int width = 640;             // pixels
+  int height = 480;            // pixels
+  double fx = 525.0;           // focal length, pixels
+  double fy = 525.0;           // focal length, pixels
+  double ae_target = 0.42;     // target mean brightness of the output, in [0, 1]
+  double ae_speed = 0.55;      // fraction of the log exposure error corrected per frame
+  double min_exposure_s = 1e-4;   // shortest exposure time, seconds
+  double max_exposure_s = 0.033;  // longest exposure time, seconds
+  double max_gain = 16.0;         // largest analogue gain (1 = base ISO)
+  double sensitivity = 0.135;     // linear signal per nit-second at gain 1 (1 = white)
+  double awb_speed = 0.4;         // fraction of the log white-balance error corrected per frame
+  double awb_strength = 0.75;     // fraction of the grey-world correction applied
+  double photons_at_white = 4000; // shot noise: photo-electrons at full scale, gain 1
+  double read_noise = 0.002;      // read noise std at gain 1, fraction of full scale
+  double blur_sigma_px = 0.6;     // optics blur, pixels
+  double gamma = 2.2;             // display gamma of the tone curve
+  double tone_contrast = 0.12;    // S-curve strength added to the gamma curve, [0, 0.5]
+
+  PinholeCamera Intrinsics() const;
+  void Check() const;
+};
+
+struct CameraState {
+  double exposure = 0.01;  // exposure time x gain x sensitivity (signal per nit)
+  cv::Vec3d wb_gains = cv::Vec3d(1, 1, 1);
+  double exposure_time_s = 0.01;
+  double gain = 1.0;
+  double last_mean_brightness = 0.0;  // mean output brightness of the last frame, [0, 1]
+};
+
+class CameraModel {
+ public:
+  CameraModel(const CameraModelOptions& options, uint64_t seed);
+
+  // Produces the image of this radiance, then updates exposure and white
+  // balance from it (they act from the next frame on: the lag).
+  cv::Mat Capture(const cv::Mat& radiance_bgr);
+  // Meters the radiance `iterations` times without producing an image, as a
+  // running camera does before the first recorded frame.
+  void Settle(const cv::Mat& radiance_bgr, int iterations);
+
+  const CameraState& state() const { return state_; }
+  // The tone curve: linear [0, 1] -> output [0, 1].
+  double Tone(double linear) const;
+
+ private:
+  void Meter(const cv::Mat& radiance_bgr);
+  void SetExposure(double exposure);
+
+  CameraModelOptions options_;
+  CameraState state_;
+  cv::RNG rng_;
+  std::vector<uint8_t> tone_lut_;  // 4096 entries over [0, 1]
+};
+
+}  // namespace duskmap

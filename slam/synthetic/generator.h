@@ -1,0 +1,45 @@
+// `duskmap generate`: builds the apartment, then for every session walks the
+// route, renders and captures each frame, simulates odometry and writes the
+// session in the TUM layout; the whole dataset is written into a temporary
+// sibling folder and renamed into place only when complete. Sessions run on
+// config.threads threads, one session per thread; the output is identical
+// for any thread count.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "slam/synthetic/generator_config.h"
+
+namespace duskmap {
+
+struct GenerateOptions {
+  std::string output_path;  // dataset folder to create
+  bool overwrite = false;   // replace an existing folder
+  bool preview = false;     // also write previews/ (see preview.h)
+};
+
+struct SessionSummary {
+  std::string name;
+  std::string clock_time;
+  int frames = 0;
+  double distance_m = 0.0;          // ground-truth path length
+  double sun_elevation_deg = 0.0;
+  double mean_brightness = 0.0;     // mean output brightness over frames, [0, 1]
+  double mean_gain = 0.0;           // mean analogue gain over frames
+  double odometry_final_error_m = 0.0;  // odometry vs ground truth at the last frame
+  double wall_s = 0.0;
+};
+
+struct GenerateSummary {
+  std::vector<SessionSummary> sessions;
+  double wall_s = 0.0;
+  std::string output_path;
+};
+
+GenerateSummary GenerateDataset(const GeneratorConfig& config, const GenerateOptions& options);
+
+// Seconds of the local day at which a session's first frame is recorded.
+double SessionStartTimestamp(const SessionSpec& session);
+
+}  // namespace duskmap

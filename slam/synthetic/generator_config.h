@@ -1,0 +1,46 @@
+// The configuration of `duskmap generate` (configs/sunset_apartment.json):
+// every model constant, the sessions and the seeds. Read strictly: an unknown
+// key anywhere is a ConfigError naming it.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "slam/synthetic/apartment.h"
+#include "slam/synthetic/camera_model.h"
+#include "slam/synthetic/depth_sensor.h"
+#include "slam/synthetic/lighting.h"
+#include "slam/synthetic/odometry.h"
+#include "slam/synthetic/route.h"
+
+namespace duskmap {
+
+struct SessionSpec {
+  std::string name;        // "1".."6", "A".."F"
+  std::string clock_time;  // local "HH:MM"
+  std::string role = "mapping";  // "mapping" or "localization"
+};
+
+struct GeneratorConfig {
+  uint64_t seed = 2024;  // base seed of everything (textures, routes, noise)
+  int threads = 2;       // sessions generated in parallel (output is identical)
+  int max_frames = 0;    // 0 = the whole route; otherwise the first N frames (tests)
+  ApartmentOptions scene;
+  LightingOptions lighting;
+  CameraModelOptions camera;
+  DepthSensorOptions depth;
+  RouteOptions route;
+  OdometryOptions odometry;
+  std::vector<SessionSpec> sessions = DefaultSessions();
+
+  // The paper's sessions: mapping 1-6 at 16:46 ... 19:35, localization A-F at
+  // 16:51 ... 19:42.
+  static std::vector<SessionSpec> DefaultSessions();
+  void Check() const;
+};
+
+// Reads a config file; throws ConfigError "<path>:<key>: <problem>".
+GeneratorConfig ReadGeneratorConfig(const std::string& path);
+
+}  // namespace duskmap

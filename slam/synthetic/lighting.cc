@@ -1,0 +1,305 @@
+#include "slam/synthetic/lighting.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "slam/core/check.h"
+
+namespace duskmap {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+double SkyLux(const LightingOptions& options, double elevation_deg) {
+  const auto& k = options.sky_log10_lux_knots;
+  if (elevation_deg < k.front()[0]) return 0.0;
+  if (elevation_deg >= k.back()[0]) return std::pow(10.0, k.back()[1]);
+  for (size_t i = 1; i < k.size(); ++i) {
+    if (elevation_deg < k[i][0]) {
+      const double s = (elevation_deg - k[i - 1][0]) / (k[i][0] - k[i - 1][0]);
+      return std::pow(10.0, k[i - 1][1] + s * (k[i][1] - k[i - 1][1]));
+    }
+  }
+  return std::pow(10.0, k.back()[1]);
+}
+
+// Sky colour: neutral-blue by day, warmer near sunset, deep blue in twilight.
+cv::Vec3f SkyColor(double elevation_deg) {
+  const cv::Vec3f day(1.15f, 1.0f, 0.88f), sunset(0.95f, 1.0f, 1.08f), twilight(1.6f, 1.0f, 0.62f);
+  if (elevation_deg >= 8.0) return day;
+  if (elevation_deg >= 0.0) {
+    const float s = static_cast<float>(elevation_deg / 8.0);
+    return day * s + sunset * (1.0f - s);
+  }
+  const float s = static_cast<float>(std::min(1.0, -elevation_deg / 5.0));
+  return twilight * s + sunset * (1.0f - s);
+}
+
+bool IsLampOn(const Lamp& lamp, double clock_time_h) {
+  if (lamp.on_from.empty()) return true;
+  return clock_time_h >= ParseClockTime(lamp.on_from, "lamp '" + lamp.name + "'.on_from");
+}
+
+// Projected solid angle of a polygon seen from `point` with unit `normal`,
+// after clipping the polygon to the receiver's upper hemisphere.
+double ProjectedSolidAngle(const std::array<Eigen::Vector3d, 4>& corners, const Eigen::Vector3d& point,
+                           const Eigen::Vector3d& normal) {
+  Eigen::Vector3d clipped[8];
+  int count = 0;
+  for (int i = 0; i < 4; ++i) {
+    const Eigen::Vector3d a = corners[i] - point, b = corners[(i + 1) % 4] - point;
+    const double da = normal.dot(a), db = normal.dot(b);
+    if (da >= 0.0) clipped[count++] = a;
+    if ((da >= 0.0) != (db >= 0.0)) clipped[count++] = a + (b - a) * (da / (da - db));
+  }
+  if (count < 3) return 0.0;
+  double sum = 0.0;
+  for (int i = 0; i < count; ++i) {
+    const Eigen::Vector3d a = clipped[i].normalized(), b = clipped[(i + 1) % count].normalized();
+    const Eigen::Vector3d cross = a.cross(b);
+    const double cross_norm = cross.norm();
+    if (cross_norm < 1e-12) continue;
+    sum += std::atan2(cross_norm, a.dot(b)) * normal.dot(cross / cross_norm);
+  }
+  return 0.5 * std::abs(sum);
+}
+
+std::array<Eigen::Vector3d, 4> Corners(const Quad& q) {
+  return {q.origin_in_world, q.PointAt(q.size_u_m, 0.0), q.PointAt(q.size_u_m, q.size_v_m),
+          q.PointAt(0.0, q.size_v_m)};
+}
+
+// Whether the sun reaches `point` through window `w` (mullions and every
+// opaque quad checked).
+bool SunThroughWindow(const Scene& scene, const Quad& window, const Eigen::Vector3d& point,
+                      const Eigen::Vector3d& to_sun, int receiver_quad) {
+  const double d_window = window.Intersect(point, to_sun);
+  if (d_window < 0.0) return false;
+  const Eigen::Vector3d hit = point + d_window * to_sun - window.origin_in_world;
+  const int col = std::clamp(static_cast<int>(hit.dot(window.u_axis) / window.size_u_m * window.albedo.cols), 0, window.albedo.cols - 1);
+  const int row = std::clamp(static_cast<int>(hit.dot(window.v_axis) / window.size_v_m * window.albedo.rows), 0, window.albedo.rows - 1);
+  if (Luminance(window.albedo.at<cv::Vec3f>(row, col)) < 0.05f) return false;  // mullion
+  for (size_t i = 0; i < scene.quads.size(); ++i) {
+    const Quad& q = scene.quads[i];
+    if (static_cast<int>(i) == receiver_quad || q.emission == Emission::kSky) continue;
+    const double d = q.Intersect(point, to_sun);
+    if (d > 1e-4 && d < d_window) return false;
+  }
+  return true;
+}
+
+cv::Vec3f Scale(const cv::Vec3f& c, double s) { return c * static_cast<float>(s); }
+
+}  // namespace
+
+void LightingOptions::Check() const {
+  SLAM_THROW_IF_NOT(ConfigError, std::abs(site.latitude_deg) <= 90.0)
+      << "lighting.latitude_deg must be in [-90, 90], got " << site.latitude_deg;
+  SLAM_THROW_IF_NOT(ConfigError, std::abs(site.longitude_deg) <= 180.0)
+      << "lighting.longitude_deg must be in [-180, 180], got " << site.longitude_deg;
+  SLAM_THROW_IF_NOT(ConfigError, site.day_of_year >= 1 && site.day_of_year <= 366)
+      << "lighting.day_of_year must be in [1, 366], got " << site.day_of_year;
+  SLAM_THROW_IF_NOT(ConfigError, sun_illuminance_lux > 0.0) << "lighting.sun_illuminance_lux must be > 0";
+  SLAM_THROW_IF_NOT(ConfigError, glass_transmission > 0.0 && glass_transmission <= 1.0)
+      << "lighting.glass_transmission must be in (0, 1], got " << glass_transmission;
+  SLAM_THROW_IF_NOT(ConfigError, lamp_color_temperature_k >= 1000 && lamp_color_temperature_k <= 12000)
+      << "lighting.lamp_color_temperature_k must be in [1000, 12000], got " << lamp_color_temperature_k;
+  SLAM_THROW_IF_NOT(ConfigError, ambient_fraction >= 0.0 && ambient_fraction < 1.0)
+      << "lighting.ambient_fraction must be in [0, 1), got " << ambient_fraction;
+  SLAM_THROW_IF_NOT(ConfigError, ambient_leak >= 0.0 && ambient_leak < 1.0)
+      << "lighting.ambient_leak must be in [0, 1), got " << ambient_leak;
+  SLAM_THROW_IF_NOT(ConfigError, light_texel_m >= 0.01 && light_texel_m <= 0.5)
+      << "lighting.light_texel_m must be in [0.01, 0.5], got " << light_texel_m;
+  SLAM_THROW_IF_NOT(ConfigError, lamp_shade_nits_per_cd >= 0.0) << "lighting.lamp_shade_nits_per_cd must be >= 0";
+  SLAM_THROW_IF_NOT(ConfigError, sky_log10_lux_knots.size() >= 2)
+      << "lighting.sky_log10_lux_knots needs at least 2 knots";
+  for (size_t i = 1; i < sky_log10_lux_knots.size(); ++i) {
+    SLAM_THROW_IF_NOT(ConfigError, sky_log10_lux_knots[i][0] > sky_log10_lux_knots[i - 1][0])
+        << "lighting.sky_log10_lux_knots elevations must increase (knot " << i << ")";
+  }
+}
+
+double ParseClockTime(const std::string& hh_mm, const std::string& what) {
+  int h = -1, m = -1;
+  char tail = 0;
+  const bool ok = hh_mm.size() == 5 && std::sscanf(hh_mm.c_str(), "%2d:%2d%c", &h, &m, &tail) == 2 &&
+                  h >= 0 && h < 24 && m >= 0 && m < 60;
+  SLAM_THROW_IF_NOT(ConfigError, ok) << what << ": clock time must be \"HH:MM\", got \"" << hh_mm << "\"";
+  return h + m / 60.0;
+}
+
+cv::Vec3f ColorTemperatureToBgr(double kelvin) {
+  // Planck's law sampled at representative wavelengths of the B, G, R
+  // channels, normalised to unit luminance.
+  const double wavelengths_nm[3] = {460.0, 545.0, 610.0};
+  cv::Vec3f c;
+  for (int i = 0; i < 3; ++i) {
+    const double l = wavelengths_nm[i] * 1e-9;
+    c[i] = static_cast<float>(1.0 / (std::pow(l, 5) * (std::exp(1.4388e-2 / (l * kelvin)) - 1.0)));
+  }
+  // Relative to a 6500 K white so that daylight maps near neutral.
+  static const cv::Vec3f white = [] {
+    const double wl[3] = {460.0, 545.0, 610.0};
+    cv::Vec3f w;
+    for (int i = 0; i < 3; ++i) {
+      const double l = wl[i] * 1e-9;
+      w[i] = static_cast<float>(1.0 / (std::pow(l, 5) * (std::exp(1.4388e-2 / (l * 6500.0)) - 1.0)));
+    }
+    return w;
+  }();
+  for (int i = 0; i < 3; ++i) c[i] /= white[i];
+  return c / Luminance(c);
+}
+
+SessionLighting ComputeSessionLighting(const LightingOptions& options, const Scene& scene,
+                                       double clock_time_h) {
+  SessionLighting l;
+  l.clock_time_h = clock_time_h;
+  l.sun = ComputeSunPosition(options.site, clock_time_h);
+  l.sun_direction_in_world = SunDirectionInWorld(l.sun);
+  if (l.sun.elevation_deg > options.horizon_elevation_deg) {
+    const double h = l.sun.elevation_deg;
+    // Kasten-Young air mass.
+    const double airmass = 1.0 / (std::sin(h * kPi / 180) + 0.50572 * std::pow(h + 6.07995, -1.6364));
+    for (int c = 0; c < 3; ++c) {
+      l.sun_normal_lux_bgr[c] = static_cast<float>(options.sun_illuminance_lux * options.glass_transmission *
+                                                   std::exp(-options.optical_depth_bgr[c] * airmass));
+    }
+  }
+  const double sky_lux = SkyLux(options, l.sun.elevation_deg);
+  l.sky_nits_bgr = Scale(SkyColor(l.sun.elevation_deg), sky_lux / kPi * options.glass_transmission);
+  l.lamp_color_bgr = ColorTemperatureToBgr(options.lamp_color_temperature_k);
+  for (const Lamp& lamp : scene.lamps) l.lamp_on.push_back(IsLampOn(lamp, clock_time_h));
+  return l;
+}
+
+IrradianceParts ComputeDirectIrradiance(const Scene& scene, const SessionLighting& lighting,
+                                        const Eigen::Vector3d& point, const Eigen::Vector3d& normal,
+                                        int room, int receiver_quad) {
+  IrradianceParts parts;
+  const Eigen::Vector3d& to_sun = lighting.sun_direction_in_world;
+  const double cos_sun = normal.dot(to_sun);
+  const bool sun_up = lighting.sun_normal_lux_bgr[1] > 0.0f && cos_sun > 0.0;
+  for (const Quad& q : scene.quads) {
+    if (q.emission != Emission::kSky || q.room != room) continue;
+    if (q.normal().dot(point - q.origin_in_world) <= 0.0) continue;  // behind the window
+    parts.sky += Scale(lighting.sky_nits_bgr, ProjectedSolidAngle(Corners(q), point, normal));
+    if (sun_up && Luminance(parts.sun) == 0.0f && SunThroughWindow(scene, q, point, to_sun, receiver_quad)) {
+      parts.sun = Scale(lighting.sun_normal_lux_bgr, cos_sun);
+    }
+  }
+  for (size_t i = 0; i < scene.lamps.size(); ++i) {
+    const Lamp& lamp = scene.lamps[i];
+    if (!lighting.lamp_on[i] || lamp.room != room) continue;
+    const Eigen::Vector3d to_lamp = lamp.position_in_world - point;
+    const double r2 = std::max(to_lamp.squaredNorm(), 0.01);
+    const double cos_lamp = normal.dot(to_lamp) / std::sqrt(r2);
+    if (cos_lamp <= 0.0) continue;
+    parts.lamps += Scale(lighting.lamp_color_bgr, lamp.intensity_cd * cos_lamp / r2);
+  }
+  return parts;
+}
+
+namespace {
+
+struct LightMap {
+  int nodes_u = 0, nodes_v = 0;
+  std::vector<cv::Vec3f> lux;  // row-major, nodes_v rows
+};
+
+LightMap ComputeLightMap(const Scene& scene, const SessionLighting& lighting, int quad_index,
+                         double texel_m) {
+  const Quad& q = scene.quads[quad_index];
+  LightMap map;
+  map.nodes_u = std::max(2, static_cast<int>(std::ceil(q.size_u_m / texel_m)) + 1);
+  map.nodes_v = std::max(2, static_cast<int>(std::ceil(q.size_v_m / texel_m)) + 1);
+  map.lux.resize(static_cast<size_t>(map.nodes_u) * map.nodes_v);
+  const Eigen::Vector3d n = q.normal();
+  for (int j = 0; j < map.nodes_v; ++j) {
+    for (int i = 0; i < map.nodes_u; ++i) {
+      const Eigen::Vector3d p = q.PointAt(q.size_u_m * i / (map.nodes_u - 1), q.size_v_m * j / (map.nodes_v - 1)) + 1e-3 * n;
+      map.lux[static_cast<size_t>(j) * map.nodes_u + i] =
+          ComputeDirectIrradiance(scene, lighting, p, n, q.room, quad_index).total();
+    }
+  }
+  return map;
+}
+
+cv::Vec3f SampleLightMap(const LightMap& map, double fu, double fv) {
+  const double x = fu * (map.nodes_u - 1), y = fv * (map.nodes_v - 1);
+  const int i = std::min(static_cast<int>(x), map.nodes_u - 2), j = std::min(static_cast<int>(y), map.nodes_v - 2);
+  const float a = static_cast<float>(x - i), b = static_cast<float>(y - j);
+  const cv::Vec3f* row0 = &map.lux[static_cast<size_t>(j) * map.nodes_u];
+  const cv::Vec3f* row1 = row0 + map.nodes_u;
+  return (row0[i] * (1 - a) + row0[i + 1] * a) * (1 - b) + (row1[i] * (1 - a) + row1[i + 1] * a) * b;
+}
+
+// Per-room ambient irradiance: a fraction of the area-weighted mean direct
+// irradiance of the room plus a leak of the apartment mean.
+std::vector<cv::Vec3f> AmbientPerRoom(const Scene& scene, const std::vector<LightMap>& maps,
+                                      const LightingOptions& options) {
+  const size_t rooms = scene.room_names.size();
+  std::vector<cv::Vec3d> sum(rooms, cv::Vec3d(0, 0, 0));
+  std::vector<double> area(rooms, 0.0);
+  for (size_t i = 0; i < scene.quads.size(); ++i) {
+    const Quad& q = scene.quads[i];
+    if (q.emission != Emission::kNone) continue;
+    cv::Vec3d mean(0, 0, 0);
+    for (const cv::Vec3f& e : maps[i].lux) mean += cv::Vec3d(e);
+    mean /= static_cast<double>(maps[i].lux.size());
+    const double a = q.size_u_m * q.size_v_m;
+    sum[q.room] += mean * a;
+    area[q.room] += a;
+  }
+  cv::Vec3d total(0, 0, 0);
+  double total_area = 0.0;
+  for (size_t r = 0; r < rooms; ++r) {
+    total += sum[r];
+    total_area += area[r];
+  }
+  std::vector<cv::Vec3f> ambient(rooms);
+  for (size_t r = 0; r < rooms; ++r) {
+    const cv::Vec3d room_mean = area[r] > 0.0 ? sum[r] / area[r] : cv::Vec3d(0, 0, 0);
+    ambient[r] = cv::Vec3f(room_mean * options.ambient_fraction + total / std::max(total_area, 1e-9) * options.ambient_leak);
+  }
+  return ambient;
+}
+
+}  // namespace
+
+std::vector<cv::Mat> PrepareRadiance(const Scene& scene, const SessionLighting& lighting,
+                                     const LightingOptions& options) {
+  std::vector<LightMap> maps(scene.quads.size());
+  for (size_t i = 0; i < scene.quads.size(); ++i) {
+    if (scene.quads[i].emission == Emission::kSky) continue;
+    maps[i] = ComputeLightMap(scene, lighting, static_cast<int>(i), options.light_texel_m);
+  }
+  const std::vector<cv::Vec3f> ambient = AmbientPerRoom(scene, maps, options);
+  std::vector<cv::Mat> radiance(scene.quads.size());
+  const float inv_pi = static_cast<float>(1.0 / kPi);
+  for (size_t i = 0; i < scene.quads.size(); ++i) {
+    const Quad& q = scene.quads[i];
+    cv::Mat out(q.albedo.size(), CV_32FC3);
+    const bool glowing = q.emission == Emission::kLamp && lighting.lamp_on[q.lamp];
+    for (int r = 0; r < out.rows; ++r) {
+      const cv::Vec3f* a = q.albedo.ptr<cv::Vec3f>(r);
+      cv::Vec3f* o = out.ptr<cv::Vec3f>(r);
+      const double fv = (r + 0.5) / out.rows;
+      for (int c = 0; c < out.cols; ++c) {
+        if (q.emission == Emission::kSky) {
+          o[c] = a[c].mul(lighting.sky_nits_bgr);
+        } else if (glowing) {
+          o[c] = a[c].mul(lighting.lamp_color_bgr) *
+                 static_cast<float>(scene.lamps[q.lamp].intensity_cd * options.lamp_shade_nits_per_cd);
+        } else {
+          const cv::Vec3f e = SampleLightMap(maps[i], (c + 0.5) / out.cols, fv) + ambient[q.room];
+          o[c] = a[c].mul(e) * inv_pi;
+        }
+      }
+    }
+    radiance[i] = out;
+  }
+  return radiance;
+}
+
+}  // namespace duskmap

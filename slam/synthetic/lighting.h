@@ -1,0 +1,80 @@
+// Illumination of the apartment as a function of the local clock time: the
+// sun through the windows (with cast shadows), the sky through the windows
+// (fading through civil twilight), the 2700 K lamps and an ambient term for
+// interreflection. Units: illuminance in lux, radiance in nits (cd/m2); a
+// diffuse surface has radiance albedo * E / pi. Colours are linear BGR.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "slam/synthetic/scene.h"
+#include "slam/synthetic/solar.h"
+
+namespace duskmap {
+
+struct LightingOptions {
+  SolarSite site;                          // location and date
+  double sun_illuminance_lux = 127000.0;   // direct normal above the atmosphere
+  std::array<double, 3> optical_depth_bgr = {0.30, 0.21, 0.14};  // per airmass (reddening)
+  double horizon_elevation_deg = 1.5;      // buildings/trees hide the sun below this
+  // Horizontal sky illuminance: log10(lux) at sun elevations (deg), linear in
+  // between, zero below the first knot.
+  std::vector<std::array<double, 2>> sky_log10_lux_knots = {
+      {-12.0, -1.5}, {-6.0, 0.5}, {-3.0, 1.6}, {0.0, 2.6}, {5.0, 3.4}, {15.0, 3.9}, {30.0, 4.1}};
+  double glass_transmission = 0.75;        // fraction through the window glass
+  double lamp_color_temperature_k = 2700;  // warm incandescent/LED
+  double lamp_shade_nits_per_cd = 15.0;    // glowing shade radiance per lamp candela
+  double ambient_fraction = 0.35;          // interreflection: fraction of the room's mean irradiance
+  double ambient_leak = 0.06;              // fraction of the apartment mean reaching every room
+  double light_texel_m = 0.05;             // light-map spacing
+
+  void Check() const;
+};
+
+// The light state of one session.
+struct SessionLighting {
+  double clock_time_h = 0.0;
+  SunPosition sun;
+  Eigen::Vector3d sun_direction_in_world = Eigen::Vector3d::UnitZ();
+  cv::Vec3f sun_normal_lux_bgr = cv::Vec3f(0, 0, 0);  // direct normal, after glass; 0 when hidden
+  cv::Vec3f sky_nits_bgr = cv::Vec3f(0, 0, 0);        // sky radiance seen through glass
+  std::vector<bool> lamp_on;                          // per Scene::lamps
+  cv::Vec3f lamp_color_bgr = cv::Vec3f(1, 1, 1);      // unit-luminance lamp colour
+};
+
+// "HH:MM" -> hours; throws ConfigError naming `what` when malformed.
+double ParseClockTime(const std::string& hh_mm, const std::string& what);
+
+SessionLighting ComputeSessionLighting(const LightingOptions& options, const Scene& scene,
+                                       double clock_time_h);
+
+// Linear-BGR colour of a black body at this temperature, unit luminance.
+cv::Vec3f ColorTemperatureToBgr(double kelvin);
+
+// Direct irradiance at a point by source (no ambient term).
+struct IrradianceParts {
+  cv::Vec3f sun = cv::Vec3f(0, 0, 0);
+  cv::Vec3f sky = cv::Vec3f(0, 0, 0);
+  cv::Vec3f lamps = cv::Vec3f(0, 0, 0);
+  cv::Vec3f total() const { return sun + sky + lamps; }
+};
+IrradianceParts ComputeDirectIrradiance(const Scene& scene, const SessionLighting& lighting,
+                                        const Eigen::Vector3d& point, const Eigen::Vector3d& normal,
+                                        int room, int receiver_quad);
+
+// Lighting preparation: the radiance texture (nits, CV_32FC3) of every quad
+// for this session, i.e. albedo x light map / pi for diffuse quads (light map
+// with ambient term), the sky for windows, the glow of lit lamp shades.
+std::vector<cv::Mat> PrepareRadiance(const Scene& scene, const SessionLighting& lighting,
+                                     const LightingOptions& options);
+
+// Luminance of a linear BGR colour (Rec. 709 weights).
+inline float Luminance(const cv::Vec3f& bgr) {
+  return 0.0722f * bgr[0] + 0.7152f * bgr[1] + 0.2126f * bgr[2];
+}
+
+}  // namespace duskmap

@@ -1,0 +1,52 @@
+// Measurable realism of a multi-session dataset: for SIFT and ORB (OpenCV),
+// the median matching inlier ratio between frames at corresponding
+// ground-truth poses across every pair of sessions.
+//
+// Anchors are every frame_step-th frame of the first session; in each session
+// the frame nearest to an anchor (position + 0.5 m/rad x angle, within the
+// gaps below) stands for it. For each pair of sessions and each anchor both
+// have, descriptors are matched with Lowe's ratio test; a match is an inlier
+// when the keypoint of the first frame, back-projected with its depth and
+// moved by the ground-truth relative pose, reprojects within
+// max_reprojection_px of its match in the second frame (matches without
+// depth are left out). Ground truth instead of RANSAC makes the ratio the
+// true fraction of correct matches, independent of a robust estimator.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "slam/io/dataset_reader.h"
+
+namespace duskmap {
+
+struct RealismOptions {
+  int frame_step = 10;               // anchor spacing in frames of the first session
+  int max_features = 1000;           // per frame and detector
+  double ratio_test = 0.8;           // Lowe's nearest/second-nearest distance ratio
+  double max_reprojection_px = 4.0;  // inlier threshold against ground truth
+  double max_position_gap_m = 0.5;   // anchor correspondence: largest position difference
+  double max_angle_gap_deg = 20.0;   // anchor correspondence: largest viewing-direction difference
+  int min_correct_matches = 10;      // "SIFT finds correct matches" threshold per frame pair
+
+  void Check() const;
+};
+
+struct RealismReport {
+  std::vector<std::string> sessions;     // names, dataset order
+  std::vector<std::string> clock_times;  // "" when unknown
+  int anchors = 0;
+  // Symmetric matrices over sessions; the diagonal is NaN (a session against itself).
+  Eigen::MatrixXd sift_inlier_ratio;     // median over corresponding frame pairs
+  Eigen::MatrixXd orb_inlier_ratio;
+  Eigen::MatrixXd sift_found_fraction;   // fraction of pairs with >= min_correct_matches inliers
+  Eigen::MatrixXd sift_median_inliers;
+  double wall_s = 0.0;
+};
+
+// Throws InputError when the dataset lacks ground truth.
+RealismReport ComputeRealism(const DatasetReader& dataset, const RealismOptions& options);
+
+}  // namespace duskmap

@@ -1,0 +1,152 @@
+#include "slam/synthetic/renderer.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "slam/core/check.h"
+
+namespace duskmap {
+
+struct Renderer::QuadSetup {
+  int index = -1;
+  Eigen::Vector2d polygon[8];  // clipped, projected vertices (pixels)
+  int count = 0;
+  // inv_depth = a*u + b*v + c
+  double inv_a = 0, inv_b = 0, inv_c = 0;
+  // texel x = (sa*u + sb*v + sc) / inv_depth + sd, same for y with t*.
+  double sa = 0, sb = 0, sc = 0, sd = 0;
+  double ta = 0, tb = 0, tc = 0, td = 0;
+  double cos_a = 0, cos_b = 0, cos_c = 0;  // n . d (unnormalised ray)
+};
+
+Renderer::Renderer(const Scene& scene, const PinholeCamera& camera, double near_m)
+    : scene_(scene), camera_(camera), near_m_(near_m) {
+  SLAM_CHECK(camera_.IsValid());
+}
+
+bool Renderer::SetupQuad(int index, const Rigid3d& camera_from_world, QuadSetup* s) const {
+  const Quad& q = scene_.quads[index];
+  const Eigen::Matrix3d r = camera_from_world.rotation.toRotationMatrix();
+  const Eigen::Vector3d o = camera_from_world * q.origin_in_world;
+  const Eigen::Vector3d u = r * q.u_axis, v = r * q.v_axis, n = u.cross(v);
+  const double k = n.dot(o);
+  if (k >= -1e-9) return false;  // back face or edge-on
+  const Eigen::Vector3d corners[4] = {o, o + u * q.size_u_m, o + u * q.size_u_m + v * q.size_v_m,
+                                      o + v * q.size_v_m};
+  s->count = 0;
+  for (int i = 0; i < 4; ++i) {
+    const Eigen::Vector3d& a = corners[i];
+    const Eigen::Vector3d& b = corners[(i + 1) % 4];
+    if (a.z() >= near_m_) s->polygon[s->count++] = Eigen::Vector2d(camera_.fx * a.x() / a.z() + camera_.cx, camera_.fy * a.y() / a.z() + camera_.cy);
+    if ((a.z() >= near_m_) != (b.z() >= near_m_)) {
+      const Eigen::Vector3d p = a + (b - a) * ((near_m_ - a.z()) / (b.z() - a.z()));
+      s->polygon[s->count++] = Eigen::Vector2d(camera_.fx * p.x() / p.z() + camera_.cx, camera_.fy * p.y() / p.z() + camera_.cy);
+    }
+  }
+  if (s->count < 3) return false;
+  s->index = index;
+  const double ifx = 1.0 / camera_.fx, ify = 1.0 / camera_.fy;
+  // d(u, v) = ((u - cx)/fx, (v - cy)/fy, 1): a dot product with d is affine in (u, v).
+  auto affine = [&](const Eigen::Vector3d& w, double* a, double* b, double* c) {
+    *a = w.x() * ifx;
+    *b = w.y() * ify;
+    *c = w.z() - w.x() * camera_.cx * ifx - w.y() * camera_.cy * ify;
+  };
+  affine(n / k, &s->inv_a, &s->inv_b, &s->inv_c);
+  affine(n, &s->cos_a, &s->cos_b, &s->cos_c);
+  const double scale_s = q.albedo.cols / q.size_u_m, scale_t = q.albedo.rows / q.size_v_m;
+  affine(u * scale_s, &s->sa, &s->sb, &s->sc);
+  s->sd = -u.dot(o) * scale_s - 0.5;
+  affine(v * scale_t, &s->ta, &s->tb, &s->tc);
+  s->td = -v.dot(o) * scale_t - 0.5;
+  return true;
+}
+
+void Renderer::RasterizeDepth(const QuadSetup& s, cv::Mat* inv_depth, cv::Mat* ids) const {
+  double y_min = 1e30, y_max = -1e30;
+  for (int i = 0; i < s.count; ++i) {
+    y_min = std::min(y_min, s.polygon[i].y());
+    y_max = std::max(y_max, s.polygon[i].y());
+  }
+  const int row_begin = std::max(0, static_cast<int>(std::ceil(y_min)));
+  const int row_end = std::min(camera_.height - 1, static_cast<int>(std::floor(y_max)));
+  for (int row = row_begin; row <= row_end; ++row) {
+    double x_lo = 1e30, x_hi = -1e30;
+    for (int i = 0; i < s.count; ++i) {
+      const Eigen::Vector2d& a = s.polygon[i];
+      const Eigen::Vector2d& b = s.polygon[(i + 1) % s.count];
+      if ((a.y() <= row && b.y() >= row) || (b.y() <= row && a.y() >= row)) {
+        const double x = std::abs(b.y() - a.y()) < 1e-12 ? std::min(a.x(), b.x()) : a.x() + (row - a.y()) * (b.x() - a.x()) / (b.y() - a.y());
+        const double x2 = std::abs(b.y() - a.y()) < 1e-12 ? std::max(a.x(), b.x()) : x;
+        x_lo = std::min(x_lo, x);
+        x_hi = std::max(x_hi, x2);
+      }
+    }
+    const int col_begin = std::max(0, static_cast<int>(std::ceil(x_lo)));
+    const int col_end = std::min(camera_.width - 1, static_cast<int>(std::floor(x_hi)));
+    float* depth_row = inv_depth->ptr<float>(row);
+    int* id_row = ids->ptr<int>(row);
+    double inv = s.inv_a * col_begin + s.inv_b * row + s.inv_c;
+    for (int col = col_begin; col <= col_end; ++col, inv += s.inv_a) {
+      if (inv > depth_row[col]) {
+        depth_row[col] = static_cast<float>(inv);
+        id_row[col] = s.index;
+      }
+    }
+  }
+}
+
+void Renderer::Render(const std::vector<cv::Mat>& radiance, const Rigid3d& world_from_camera,
+                      RenderedView* view) const {
+  SLAM_CHECK(radiance.size() == scene_.quads.size());
+  const Rigid3d camera_from_world = world_from_camera.Inverse();
+  const cv::Size size(camera_.width, camera_.height);
+  cv::Mat inv_depth(size, CV_32FC1, cv::Scalar(0.0f));
+  view->surface_id.create(size, CV_32SC1);
+  view->surface_id.setTo(cv::Scalar(-1));
+  std::vector<QuadSetup> setups(scene_.quads.size());
+  for (size_t i = 0; i < scene_.quads.size(); ++i) {
+    if (SetupQuad(static_cast<int>(i), camera_from_world, &setups[i])) {
+      RasterizeDepth(setups[i], &inv_depth, &view->surface_id);
+    }
+  }
+  view->radiance.create(size, CV_32FC3);
+  view->depth_m.create(size, CV_32FC1);
+  view->cos_incidence.create(size, CV_32FC1);
+  for (int row = 0; row < size.height; ++row) {
+    const int* id_row = view->surface_id.ptr<int>(row);
+    const float* inv_row = inv_depth.ptr<float>(row);
+    cv::Vec3f* out = view->radiance.ptr<cv::Vec3f>(row);
+    float* depth_out = view->depth_m.ptr<float>(row);
+    float* cos_out = view->cos_incidence.ptr<float>(row);
+    const double dy = (row - camera_.cy) / camera_.fy;
+    for (int col = 0; col < size.width; ++col) {
+      const int id = id_row[col];
+      if (id < 0) {
+        out[col] = cv::Vec3f(0, 0, 0);
+        depth_out[col] = 0.0f;
+        cos_out[col] = 0.0f;
+        continue;
+      }
+      const QuadSetup& s = setups[id];
+      const cv::Mat& texture = radiance[id];
+      const double z = 1.0 / inv_row[col];
+      const double x = (s.sa * col + s.sb * row + s.sc) * z + s.sd;
+      const double y = (s.ta * col + s.tb * row + s.tc) * z + s.td;
+      const int x0 = std::clamp(static_cast<int>(std::floor(x)), 0, texture.cols - 1);
+      const int y0 = std::clamp(static_cast<int>(std::floor(y)), 0, texture.rows - 1);
+      const int x1 = std::min(x0 + 1, texture.cols - 1), y1 = std::min(y0 + 1, texture.rows - 1);
+      const float fx = static_cast<float>(std::clamp(x - x0, 0.0, 1.0));
+      const float fy = static_cast<float>(std::clamp(y - y0, 0.0, 1.0));
+      const cv::Vec3f* r0 = texture.ptr<cv::Vec3f>(y0);
+      const cv::Vec3f* r1 = texture.ptr<cv::Vec3f>(y1);
+      out[col] = (r0[x0] * (1 - fx) + r0[x1] * fx) * (1 - fy) + (r1[x0] * (1 - fx) + r1[x1] * fx) * fy;
+      depth_out[col] = static_cast<float>(z);
+      const double dx = (col - camera_.cx) / camera_.fx;
+      const double n_dot_d = s.cos_a * col + s.cos_b * row + s.cos_c;
+      cos_out[col] = static_cast<float>(std::abs(n_dot_d) / std::sqrt(dx * dx + dy * dy + 1.0));
+    }
+  }
+}
+
+}  // namespace duskmap

@@ -1,0 +1,44 @@
+// Z-buffer rasterizer of the scene's textured quads: a depth/id pass (with
+// back-face culling and near-plane clipping) followed by one perspective-
+// correct bilinear texture lookup per pixel into the session's prepared
+// radiance textures. Single-threaded and deterministic.
+#pragma once
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "slam/core/camera.h"
+#include "slam/core/rigid3.h"
+#include "slam/synthetic/scene.h"
+
+namespace duskmap {
+
+struct RenderedView {
+  cv::Mat radiance;       // CV_32FC3 linear BGR nits; 0 where nothing is seen
+  cv::Mat depth_m;        // CV_32FC1 distance along the optical axis; 0 = nothing
+  cv::Mat surface_id;     // CV_32SC1 quad index; -1 = nothing
+  cv::Mat cos_incidence;  // CV_32FC1 cosine between viewing ray and surface normal
+};
+
+class Renderer {
+ public:
+  Renderer(const Scene& scene, const PinholeCamera& camera, double near_m = 0.05);
+
+  // Renders with `radiance` from PrepareRadiance (one texture per quad).
+  void Render(const std::vector<cv::Mat>& radiance, const Rigid3d& world_from_camera,
+              RenderedView* view) const;
+
+  const PinholeCamera& camera() const { return camera_; }
+
+ private:
+  struct QuadSetup;
+  bool SetupQuad(int index, const Rigid3d& camera_from_world, QuadSetup* setup) const;
+  void RasterizeDepth(const QuadSetup& setup, cv::Mat* inv_depth, cv::Mat* ids) const;
+
+  const Scene& scene_;
+  PinholeCamera camera_;
+  double near_m_;
+};
+
+}  // namespace duskmap

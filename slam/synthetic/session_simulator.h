@@ -1,0 +1,49 @@
+// One recording session of the synthetic apartment: its light state, its
+// prepared radiance textures (the lighting preparation, done once), the
+// renderer, the stateful camera and the depth sensor. Frames are produced in
+// order because the camera's auto-exposure and white balance carry over.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "slam/core/rgbd_frame.h"
+#include "slam/synthetic/camera_model.h"
+#include "slam/synthetic/depth_sensor.h"
+#include "slam/synthetic/generator_config.h"
+#include "slam/synthetic/lighting.h"
+#include "slam/synthetic/renderer.h"
+
+namespace duskmap {
+
+class SessionSimulator {
+ public:
+  // Prepares the lighting of the session at `clock_time_h`; `seed` drives
+  // camera and depth noise.
+  SessionSimulator(const GeneratorConfig& config, const Scene& scene, double clock_time_h, uint64_t seed);
+
+  // Renders the frame seen from world_from_camera and runs the camera on it.
+  // The returned frame has bgr, depth_m, camera and world_from_camera set.
+  RgbdFrame Capture(const Rigid3d& world_from_camera);
+  // Meters the view several times (the camera running before recording).
+  void Settle(const Rigid3d& world_from_camera, int iterations);
+
+  const SessionLighting& lighting() const { return lighting_; }
+  const std::vector<cv::Mat>& radiance() const { return radiance_; }
+  const Renderer& renderer() const { return renderer_; }
+  const CameraModel& camera() const { return camera_; }
+  const RenderedView& last_view() const { return view_; }
+
+ private:
+  const GeneratorConfig& config_;
+  const Scene& scene_;
+  SessionLighting lighting_;
+  std::vector<cv::Mat> radiance_;
+  Renderer renderer_;
+  CameraModel camera_;
+  cv::RNG depth_rng_;
+  RenderedView view_;
+};
+
+}  // namespace duskmap

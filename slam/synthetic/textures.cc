@@ -1,0 +1,282 @@
+#include "slam/synthetic/textures.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "slam/core/check.h"
+#include "slam/core/random.h"
+
+namespace duskmap {
+namespace {
+
+int Texels(double size_m, double texel_m) {
+  return std::max(2, static_cast<int>(std::lround(size_m / texel_m)));
+}
+
+// Smooth value noise in [-1, 1]: a coarse random grid upsampled bicubically.
+cv::Mat ValueNoise(cv::Size size, double cell_texels, cv::RNG& rng) {
+  const int gw = std::max(2, static_cast<int>(size.width / cell_texels) + 2);
+  const int gh = std::max(2, static_cast<int>(size.height / cell_texels) + 2);
+  cv::Mat grid(gh, gw, CV_32F);
+  rng.fill(grid, cv::RNG::UNIFORM, -1.0, 1.0);
+  cv::Mat noise;
+  cv::resize(grid, noise, size, 0, 0, cv::INTER_CUBIC);
+  return noise;
+}
+
+cv::Vec3f RandomColor(cv::RNG& rng, float lo, float hi) {
+  return cv::Vec3f(rng.uniform(lo, hi), rng.uniform(lo, hi), rng.uniform(lo, hi));
+}
+
+cv::Scalar ToScalar(const cv::Vec3f& c) { return cv::Scalar(c[0], c[1], c[2]); }
+
+// Modulates a constant colour by (1 + amount * noise).
+cv::Mat Modulated(cv::Size size, const cv::Vec3f& color, const cv::Mat& noise, float amount) {
+  cv::Mat out(size, CV_32FC3);
+  for (int r = 0; r < size.height; ++r) {
+    const float* n = noise.ptr<float>(r);
+    cv::Vec3f* o = out.ptr<cv::Vec3f>(r);
+    for (int c = 0; c < size.width; ++c) o[c] = color * (1.0f + amount * n[c]);
+  }
+  return out;
+}
+
+void DrawRandomShapes(cv::Mat& image, int count, cv::RNG& rng, float lo, float hi) {
+  const int w = image.cols, h = image.rows;
+  for (int i = 0; i < count; ++i) {
+    const cv::Scalar color = ToScalar(RandomColor(rng, lo, hi));
+    const cv::Point p(rng.uniform(0, w), rng.uniform(0, h));
+    const int extent = std::max(2, rng.uniform(std::max(1, w / 30), std::max(2, w / 5)));
+    switch (rng.uniform(0, 4)) {
+      case 0: cv::circle(image, p, extent / 2, color, cv::FILLED, cv::LINE_AA); break;
+      case 1:
+        cv::rectangle(image, p, p + cv::Point(extent, rng.uniform(2, extent + 3)), color, cv::FILLED);
+        break;
+      case 2:
+        cv::line(image, p, cv::Point(rng.uniform(0, w), rng.uniform(0, h)), color,
+                 std::max(1, extent / 12), cv::LINE_AA);
+        break;
+      default: {
+        std::vector<cv::Point> tri = {p, p + cv::Point(extent, rng.uniform(-extent, extent)),
+                                      p + cv::Point(rng.uniform(-extent, extent), extent)};
+        cv::fillConvexPoly(image, tri, color, cv::LINE_AA);
+      }
+    }
+  }
+}
+
+void DrawText(cv::Mat& image, int lines, cv::RNG& rng, float lo, float hi) {
+  static const char* kWords[] = {"SUNSET", "MAISON", "Quebec", "1984", "JAZZ", "Expo",
+                                 "NORD",   "cafe",   "DUSK",   "Art",  "Lumiere", "42"};
+  for (int i = 0; i < lines; ++i) {
+    const std::string text = std::string(kWords[rng.uniform(0, 12)]) + " " + kWords[rng.uniform(0, 12)];
+    const double scale = image.cols / 260.0 * rng.uniform(0.6, 1.4);
+    const cv::Point origin(rng.uniform(0, std::max(1, image.cols / 3)), rng.uniform(image.rows / 8, image.rows));
+    cv::putText(image, text, origin, rng.uniform(0, 2) ? cv::FONT_HERSHEY_DUPLEX : cv::FONT_HERSHEY_SIMPLEX,
+                scale, ToScalar(RandomColor(rng, lo, hi)), std::max(1, static_cast<int>(scale * 2)),
+                cv::LINE_AA);
+  }
+}
+
+cv::Mat GradientBackground(cv::Size size, cv::RNG& rng) {
+  const cv::Vec3f a = RandomColor(rng, 0.05f, 0.8f), b = RandomColor(rng, 0.05f, 0.8f);
+  cv::Mat out(size, CV_32FC3);
+  for (int r = 0; r < size.height; ++r) {
+    const float s = static_cast<float>(r) / std::max(1, size.height - 1);
+    out.row(r).setTo(ToScalar(a * (1.0f - s) + b * s));
+  }
+  return out;
+}
+
+void AddFrame(cv::Mat& image, const cv::Vec3f& color) {
+  const int border = std::max(2, std::min(image.cols, image.rows) / 14);
+  cv::rectangle(image, cv::Rect(0, 0, image.cols, image.rows), ToScalar(color), 2 * border);
+}
+
+cv::Mat UserPicture(cv::Size size, const std::vector<cv::Mat>& user_images, cv::RNG& rng) {
+  const cv::Mat& source = user_images[rng.uniform(0, static_cast<int>(user_images.size()))];
+  cv::Mat resized, as_float;
+  cv::resize(source, resized, size, 0, 0, cv::INTER_AREA);
+  resized.convertTo(as_float, CV_32FC3, 1.0 / 255.0);
+  cv::pow(as_float, 2.2, as_float);  // sRGB-ish to linear albedo
+  return as_float * 0.9;
+}
+
+cv::Mat MakeBooks(cv::Size size, cv::RNG& rng) {
+  cv::Mat out(size, CV_32FC3, cv::Scalar(0.12, 0.16, 0.22));  // shelf wood
+  const int shelf_rows = std::max(1, static_cast<int>(std::lround(size.height / 70.0)));
+  const int shelf_h = size.height / shelf_rows;
+  for (int s = 0; s < shelf_rows; ++s) {
+    const int top = s * shelf_h + shelf_h / 10, bottom = (s + 1) * shelf_h - shelf_h / 12;
+    int x = rng.uniform(0, 6);
+    while (x < size.width) {
+      const int w = rng.uniform(4, 14);
+      const int h = static_cast<int>((bottom - top) * rng.uniform(0.6, 1.0));
+      const cv::Vec3f color = RandomColor(rng, 0.03f, 0.7f);
+      cv::rectangle(out, cv::Rect(x, bottom - h, w, h), ToScalar(color), cv::FILLED);
+      cv::line(out, cv::Point(x + 1, bottom - h * 3 / 4), cv::Point(x + w - 2, bottom - h * 3 / 4),
+               ToScalar(color * 0.3f), 1);
+      if (rng.uniform(0, 3) == 0) {
+        cv::rectangle(out, cv::Rect(x + 1, bottom - h / 2, std::max(1, w - 2), h / 8),
+                      ToScalar(RandomColor(rng, 0.5f, 0.9f)), cv::FILLED);
+      }
+      x += w + (rng.uniform(0, 8) == 0 ? rng.uniform(5, 25) : 0);
+    }
+  }
+  return out;
+}
+
+cv::Mat MakeWindow(cv::Size size, cv::RNG& rng) {
+  // Radiance pattern relative to the sky: bright sky above, darker silhouettes
+  // of buildings and trees below, dark mullions.
+  cv::Mat out(size, CV_32FC3);
+  for (int r = 0; r < size.height; ++r) {
+    const float s = static_cast<float>(r) / size.height;
+    out.row(r).setTo(cv::Scalar(1.1 - 0.3 * s, 1.0 - 0.2 * s, 0.9 - 0.1 * s));
+  }
+  const int horizon = size.height * 2 / 3;
+  for (int x = 0; x < size.width;) {
+    const int w = rng.uniform(size.width / 8, size.width / 3);
+    const int top = horizon - rng.uniform(0, size.height / 4);
+    cv::rectangle(out, cv::Rect(x, top, w, size.height - top), cv::Scalar(0.18, 0.2, 0.22), cv::FILLED);
+    x += w;
+  }
+  for (int i = 0; i < 5; ++i) {
+    cv::circle(out, cv::Point(rng.uniform(0, size.width), horizon - rng.uniform(0, size.height / 5)),
+               rng.uniform(size.width / 12, size.width / 5), cv::Scalar(0.08, 0.14, 0.1), cv::FILLED,
+               cv::LINE_AA);
+  }
+  const int bar = std::max(2, size.width / 25);
+  cv::rectangle(out, cv::Rect(0, 0, size.width, size.height), cv::Scalar(0.03, 0.03, 0.03), 2 * bar);
+  cv::rectangle(out, cv::Rect(size.width / 2 - bar / 2, 0, bar, size.height), cv::Scalar(0.03, 0.03, 0.03), cv::FILLED);
+  cv::rectangle(out, cv::Rect(0, size.height / 2 - bar / 2, size.width, bar), cv::Scalar(0.03, 0.03, 0.03), cv::FILLED);
+  return out;
+}
+
+}  // namespace
+
+double TexelSizeM(TextureKind kind) {
+  switch (kind) {
+    case TextureKind::kPaint: return 0.02;
+    case TextureKind::kCeiling: return 0.04;
+    case TextureKind::kWoodFloor: return 0.008;
+    case TextureKind::kWood: return 0.008;
+    case TextureKind::kTiles: return 0.008;
+    case TextureKind::kFabric: return 0.008;
+    case TextureKind::kRug: return 0.008;
+    case TextureKind::kBooks: return 0.004;
+    case TextureKind::kPicture: return 0.004;
+    case TextureKind::kPoster: return 0.004;
+    case TextureKind::kDocking: return 0.003;
+    case TextureKind::kDoor: return 0.01;
+    case TextureKind::kWindow: return 0.01;
+    case TextureKind::kLampShade: return 0.02;
+  }
+  return 0.02;
+}
+
+cv::Mat MakeTexture(const TextureRequest& request, const std::vector<cv::Mat>& user_images) {
+  const double texel = TexelSizeM(request.kind);
+  const cv::Size size(Texels(request.size_u_m, texel), Texels(request.size_v_m, texel));
+  cv::RNG rng(request.seed | 1);
+  const cv::Vec3f base = request.base_bgr;
+  switch (request.kind) {
+    case TextureKind::kPaint:
+      return Modulated(size, base, ValueNoise(size, 12.0, rng) * 0.6 + ValueNoise(size, 3.0, rng) * 0.4, 0.06f);
+    case TextureKind::kCeiling:
+      return Modulated(size, base, ValueNoise(size, 10.0, rng), 0.02f);
+    case TextureKind::kWoodFloor:
+    case TextureKind::kWood: {
+      const bool floor = request.kind == TextureKind::kWoodFloor;
+      const int plank = floor ? 18 : 40;  // texels across a plank
+      cv::Mat grain = ValueNoise(cv::Size(size.width, std::max(2, size.height / 12)), 6.0, rng);
+      cv::resize(grain, grain, size, 0, 0, cv::INTER_LINEAR);
+      cv::Mat fine = ValueNoise(size, 2.0, rng);
+      cv::Mat out(size, CV_32FC3);
+      for (int r = 0; r < size.height; ++r) {
+        cv::Vec3f* o = out.ptr<cv::Vec3f>(r);
+        for (int c = 0; c < size.width; ++c) {
+          const int plank_index = c / plank;
+          const float tone = 0.75f + 0.5f * static_cast<float>((DeriveSeed(request.seed, plank_index) % 1000)) / 1000.0f;
+          const int joint_offset = static_cast<int>(DeriveSeed(request.seed + 7, plank_index) % 200);
+          const bool joint = (c % plank == 0) || (floor && (r + joint_offset) % 150 == 0);
+          const float g = 1.0f + 0.25f * grain.at<float>(r, c) + 0.08f * fine.at<float>(r, c);
+          o[c] = joint ? base * 0.35f : base * tone * g;
+        }
+      }
+      return out;
+    }
+    case TextureKind::kTiles: {
+      cv::Mat out = Modulated(size, base, ValueNoise(size, 4.0, rng), 0.05f);
+      const int tile = 19;
+      for (int x = 0; x < size.width; x += tile) cv::line(out, {x, 0}, {x, size.height}, cv::Scalar::all(0.35), 1);
+      for (int y = 0; y < size.height; y += tile) cv::line(out, {0, y}, {size.width, y}, cv::Scalar::all(0.35), 1);
+      return out;
+    }
+    case TextureKind::kFabric:
+    case TextureKind::kRug: {
+      cv::Mat out = Modulated(size, base, ValueNoise(size, 1.5, rng), 0.12f);
+      if (request.kind == TextureKind::kRug) {
+        const cv::Vec3f accent = RandomColor(rng, 0.05f, 0.6f);
+        for (int k = 1; k < 6; ++k) {
+          const int m = k * std::min(size.width, size.height) / 14;
+          cv::rectangle(out, cv::Rect(m, m, size.width - 2 * m, size.height - 2 * m), ToScalar(accent), 3);
+        }
+        DrawRandomShapes(out, 25, rng, 0.05f, 0.6f);
+      }
+      return out;
+    }
+    case TextureKind::kBooks: return MakeBooks(size, rng);
+    case TextureKind::kPicture:
+    case TextureKind::kPoster:
+    case TextureKind::kDocking: {
+      cv::Mat out = user_images.empty() || request.kind == TextureKind::kDocking
+                        ? GradientBackground(size, rng)
+                        : UserPicture(size, user_images, rng);
+      if (user_images.empty() || request.kind == TextureKind::kDocking) {
+        const int shapes = request.kind == TextureKind::kDocking ? 220 : 40;
+        DrawRandomShapes(out, shapes, rng, 0.02f, 0.85f);
+        DrawText(out, request.kind == TextureKind::kPicture ? 1 : 5, rng, 0.01f, 0.9f);
+      }
+      AddFrame(out, request.kind == TextureKind::kPoster ? cv::Vec3f(0.8f, 0.8f, 0.8f) : cv::Vec3f(0.05f, 0.06f, 0.08f));
+      return out;
+    }
+    case TextureKind::kDoor: {
+      cv::Mat out = Modulated(size, base, ValueNoise(size, 8.0, rng), 0.03f);
+      const int m = size.width / 8;
+      cv::rectangle(out, cv::Rect(m, m, size.width - 2 * m, size.height / 2 - m), ToScalar(base * 0.7f), 2);
+      cv::rectangle(out, cv::Rect(m, size.height / 2 + m / 2, size.width - 2 * m, size.height / 2 - 2 * m), ToScalar(base * 0.7f), 2);
+      cv::circle(out, cv::Point(size.width - m / 2 - 2, size.height / 2), std::max(2, m / 3), cv::Scalar(0.5, 0.55, 0.6), cv::FILLED);
+      return out;
+    }
+    case TextureKind::kWindow: return MakeWindow(size, rng);
+    case TextureKind::kLampShade:
+      return Modulated(size, base, ValueNoise(size, 3.0, rng), 0.05f);
+  }
+  return cv::Mat(size, CV_32FC3, ToScalar(base));
+}
+
+std::vector<cv::Mat> LoadUserTextures(const std::string& folder) {
+  namespace fs = std::filesystem;
+  SLAM_THROW_IF_NOT(InputError, fs::is_directory(folder)) << folder << ": textures folder does not exist";
+  std::vector<std::string> paths;
+  for (const auto& entry : fs::directory_iterator(folder)) {
+    std::string ext = entry.path().extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+    if (ext == ".png" || ext == ".jpg" || ext == ".jpeg") paths.push_back(entry.path().string());
+  }
+  std::sort(paths.begin(), paths.end());
+  std::vector<cv::Mat> images;
+  for (const std::string& path : paths) {
+    cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
+    if (!image.empty()) images.push_back(image);
+  }
+  SLAM_THROW_IF_NOT(InputError, !images.empty()) << folder << ": no readable .png/.jpg image";
+  return images;
+}
+
+}  // namespace duskmap

@@ -1,0 +1,49 @@
+// Procedural, seeded albedo textures (linear BGR, CV_32FC3 in [0, 1]). The
+// texture size in texels is the surface size divided by the texel size.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace duskmap {
+
+enum class TextureKind {
+  kPaint,     // plain wall paint with subtle low-frequency noise (weakly textured)
+  kCeiling,   // nearly uniform white
+  kWoodFloor, // planks with grain
+  kWood,      // furniture wood
+  kTiles,     // square tiles with grout lines
+  kFabric,    // woven fabric
+  kRug,       // patterned rug
+  kBooks,     // a shelf of book spines
+  kPicture,   // framed picture: shapes and gradients
+  kPoster,    // poster: shapes and text
+  kDocking,   // the highly textured docking picture
+  kDoor,      // painted door panel
+  kWindow,    // sky and outdoor silhouettes behind mullions (shown emissive)
+  kLampShade, // translucent shade
+};
+
+struct TextureRequest {
+  TextureKind kind = TextureKind::kPaint;
+  double size_u_m = 1.0;
+  double size_v_m = 1.0;
+  cv::Vec3f base_bgr = cv::Vec3f(0.6f, 0.6f, 0.6f);  // main colour (linear)
+  uint64_t seed = 0;
+};
+
+// Texel size in metres used for each kind (finer for pictures and books).
+double TexelSizeM(TextureKind kind);
+
+// Generates the albedo texture. `user_images` (optional) replaces the content
+// of pictures and posters with the user's images, chosen by seed.
+cv::Mat MakeTexture(const TextureRequest& request, const std::vector<cv::Mat>& user_images);
+
+// Loads every readable .png/.jpg/.jpeg in `folder` (sorted by name); throws
+// InputError naming the folder when it is missing or holds no image.
+std::vector<cv::Mat> LoadUserTextures(const std::string& folder);
+
+}  // namespace duskmap

@@ -1,0 +1,107 @@
+#include "slam/synthetic/lighting.h"
+
+#include <gtest/gtest.h>
+
+#include "slam/synthetic/apartment.h"
+#include "slam/synthetic/generator_config.h"
+
+namespace duskmap {
+namespace {
+
+class LightingTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { scene_ = new Scene(BuildApartment(ApartmentOptions())); }
+  static void TearDownTestSuite() { delete scene_; }
+  static Scene* scene_;
+  LightingOptions options_;
+};
+Scene* LightingTest::scene_ = nullptr;
+
+std::vector<double> SortedDefaultTimes() {
+  std::vector<double> times;
+  for (const SessionSpec& s : GeneratorConfig::DefaultSessions()) times.push_back(ParseClockTime(s.clock_time, s.name));
+  std::sort(times.begin(), times.end());
+  return times;
+}
+
+TEST_F(LightingTest, WindowLitIrradianceFallsAcrossSessionTimes) {
+  // Living-room ceiling next to the west windows and the east wall facing them.
+  const std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> probes = {
+      {{0.8, 2.3, 2.499}, {0, 0, -1}}, {{5.999, 0.6, 1.2}, {-1, 0, 0}}};
+  for (const auto& [point, normal] : probes) {
+    double previous = 1e30;
+    for (double t : SortedDefaultTimes()) {
+      const SessionLighting l = ComputeSessionLighting(options_, *scene_, t);
+      const IrradianceParts e = ComputeDirectIrradiance(*scene_, l, point, normal, 0, -1);
+      const double daylight = Luminance(e.sun + e.sky);
+      EXPECT_LT(daylight, previous) << "at " << t << " h, probe " << point.transpose();
+      previous = daylight;
+    }
+  }
+}
+
+TEST_F(LightingTest, SunPatchesEnterThroughTheWindowsInTheAfternoon) {
+  const SessionLighting l = ComputeSessionLighting(options_, *scene_, 16.0 + 46.0 / 60);
+  ASSERT_GT(l.sun_normal_lux_bgr[1], 0.0f);
+  int sunlit = 0;
+  for (double x = 0.1; x < 6.0; x += 0.1) {
+    for (double y = 0.1; y < 4.6; y += 0.1) {
+      sunlit += Luminance(ComputeDirectIrradiance(*scene_, l, {x, y, 0.001}, {0, 0, 1}, 0, -1).sun) > 0.0f;
+    }
+  }
+  EXPECT_GT(sunlit, 20);    // a patch on the floor
+  EXPECT_LT(sunlit, 1500);  // not the whole floor
+}
+
+TEST_F(LightingTest, AfterDuskOnlyTheLampsLight) {
+  const SessionLighting l = ComputeSessionLighting(options_, *scene_, 20.75);
+  EXPECT_LT(l.sun.elevation_deg, -6.0);
+  for (const auto& point : {Eigen::Vector3d(1.0, 2.0, 0.001), Eigen::Vector3d(3.0, 7.0, 0.001)}) {
+    const int room = point.y() < 4.6 ? 0 : 3;
+    const IrradianceParts e = ComputeDirectIrradiance(*scene_, l, point, {0, 0, 1}, room, -1);
+    EXPECT_EQ(Luminance(e.sun), 0.0f);
+    EXPECT_GT(Luminance(e.lamps), 0.0f);
+    EXPECT_LT(Luminance(e.sky), 0.01f * Luminance(e.lamps));
+  }
+}
+
+TEST_F(LightingTest, LivingRoomLampSwitchesOnAt1754) {
+  int lamp = -1;
+  for (size_t i = 0; i < scene_->lamps.size(); ++i) {
+    if (scene_->lamps[i].on_from == "17:54") lamp = static_cast<int>(i);
+  }
+  ASSERT_GE(lamp, 0);
+  EXPECT_FALSE(ComputeSessionLighting(options_, *scene_, 17.0 + 53.0 / 60).lamp_on[lamp]);
+  EXPECT_TRUE(ComputeSessionLighting(options_, *scene_, 17.0 + 54.0 / 60).lamp_on[lamp]);
+  // Every other lamp is on in every session.
+  for (double t : SortedDefaultTimes()) {
+    const SessionLighting l = ComputeSessionLighting(options_, *scene_, t);
+    for (size_t i = 0; i < scene_->lamps.size(); ++i) {
+      if (static_cast<int>(i) != lamp) EXPECT_TRUE(l.lamp_on[i]);
+    }
+  }
+  // The lamp raises the irradiance next to it.
+  const Eigen::Vector3d near_lamp(5.0, 4.0, 0.001);
+  const auto lamps_at = [&](double t) {
+    return Luminance(ComputeDirectIrradiance(*scene_, ComputeSessionLighting(options_, *scene_, t), near_lamp,
+                                             {0, 0, 1}, 0, -1).lamps);
+  };
+  EXPECT_GT(lamps_at(17.95), lamps_at(17.85) + 1.0f);
+}
+
+TEST(ColorTemperatureToBgr, WarmLightIsRedderThanDaylight) {
+  const cv::Vec3f warm = ColorTemperatureToBgr(2700), day = ColorTemperatureToBgr(6500);
+  EXPECT_GT(warm[2] / warm[0], 2.0f);
+  EXPECT_NEAR(day[2] / day[0], 1.0f, 1e-4f);
+  EXPECT_NEAR(Luminance(warm), 1.0f, 1e-5f);
+}
+
+TEST(ParseClockTime, RejectsMalformed) {
+  EXPECT_DOUBLE_EQ(ParseClockTime("17:54", "t"), 17.9);
+  EXPECT_THROW(ParseClockTime("5:54", "t"), ConfigError);
+  EXPECT_THROW(ParseClockTime("25:00", "t"), ConfigError);
+  EXPECT_THROW(ParseClockTime("17:5x", "t"), ConfigError);
+}
+
+}  // namespace
+}  // namespace duskmap
