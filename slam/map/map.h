@@ -51,8 +51,8 @@ struct MapNode {
   PinholeCamera camera;      // intrinsics of the frame
   std::optional<Rigid3d> truth_from_camera;  // ground truth when the dataset had it
   FrameFeatures features;    // keypoints, descriptors, 3D points (camera frame)
-  // Word of each of the first word_ids.size() keypoints (kNoWord when not
-  // quantized); the vocabulary's references are rebuilt from these.
+  // The node's words as the vocabulary held them when the map was saved
+  // (distinct, sorted; see docs/engine.md for how the vocabulary is restored).
   std::vector<WordId> word_ids;
 
   Rigid3d map_from_camera() const { return map_from_body * body_from_camera; }

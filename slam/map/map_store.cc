@@ -17,6 +17,9 @@
 namespace duskmap {
 namespace {
 
+using mapdb::SqliteDatabase;
+using mapdb::SqliteStatement;
+
 constexpr const char* kSchema = R"sql(
 CREATE TABLE meta(key TEXT PRIMARY KEY, value TEXT NOT NULL);
 CREATE TABLE sessions(id INTEGER PRIMARY KEY, name TEXT NOT NULL, clock_time TEXT);

@@ -6,7 +6,7 @@
 
 #include "slam/core/check.h"
 
-namespace duskmap {
+namespace duskmap::mapdb {
 
 SqliteDatabase::SqliteDatabase(const std::string& path, bool read_only) : path_(path) {
   const int flags = read_only ? SQLITE_OPEN_READONLY : (SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
@@ -101,4 +101,4 @@ std::vector<uint8_t> SqliteStatement::Blob(int column) const {
   return blob;
 }
 
-}  // namespace duskmap
+}  // namespace duskmap::mapdb

@@ -1,5 +1,6 @@
 // Thin RAII wrapper over the SQLite C API used by the map store: a database
-// handle and prepared statements with typed binds and column reads. Errors
+// handle and prepared statements with typed binds and column reads (in
+// namespace mapdb: the datasets module has its own wrapper). Errors
 // throw InputError naming the file and SQLite's message.
 #pragma once
 
@@ -10,7 +11,7 @@
 struct sqlite3;
 struct sqlite3_stmt;
 
-namespace duskmap {
+namespace duskmap::mapdb {
 
 class SqliteStatement;
 
@@ -66,4 +67,4 @@ class SqliteStatement {
   sqlite3_stmt* statement_;
 };
 
-}  // namespace duskmap
+}  // namespace duskmap::mapdb

@@ -1,0 +1,134 @@
+// Engine timings on synthetic sessions, features already extracted (the
+// issue's targets): the localization step (LCD + TE) on a six-session map,
+// and mapping one session.
+//
+// Data: $DUSKMAP_BENCH_DATASET when set (a synthetic dataset with mapping
+// sessions 1-6 and localization session A), otherwise a dataset generated
+// once into /tmp/duskmap_engine_bench_<frames> with the default 640x480
+// camera and the first $DUSKMAP_BENCH_FRAMES (default 60) frames per session.
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+
+#include "slam/core/timer.h"
+#include "slam/engine/localizer.h"
+#include "slam/engine/mapper.h"
+#include "slam/engine/session_runs.h"
+#include "slam/io/synthetic_dataset.h"
+#include "slam/synthetic/generator.h"
+
+namespace duskmap {
+namespace {
+
+struct CachedFrame {
+  RgbdFrame frame;
+  FrameFeatures features;
+};
+
+struct BenchData {
+  EngineOptions options;
+  std::map<std::string, std::vector<CachedFrame>> sessions;
+  std::unique_ptr<Map> six_session_map;
+};
+
+int BenchFrames() {
+  const char* env = std::getenv("DUSKMAP_BENCH_FRAMES");
+  return env ? std::atoi(env) : 60;
+}
+
+std::string DatasetPath() {
+  if (const char* env = std::getenv("DUSKMAP_BENCH_DATASET")) return env;
+  const std::string path = "/tmp/duskmap_engine_bench_" + std::to_string(BenchFrames());
+  if (!std::filesystem::exists(path)) {
+    GeneratorConfig config;
+    config.max_frames = BenchFrames();
+    config.sessions = {{"1", "16:46", "mapping"}, {"2", "17:27", "mapping"},
+                       {"3", "17:54", "mapping"}, {"4", "18:27", "mapping"},
+                       {"5", "18:56", "mapping"}, {"6", "19:35", "mapping"},
+                       {"A", "16:51", "localization"}};
+    GenerateOptions options;
+    options.output_path = path;
+    GenerateDataset(config, options);
+  }
+  return path;
+}
+
+// Reads every frame of the sessions and extracts its features once.
+BenchData& Data() {
+  static BenchData* data = [] {
+    auto* d = new BenchData();
+    const auto dataset = OpenSyntheticDataset(DatasetPath());
+    const auto extractor = CreateFeatureExtractor(d->options.features);
+    for (const std::string name : {"1", "2", "3", "4", "5", "6", "A"}) {
+      auto reader = dataset->OpenSession(name);
+      while (auto frame = reader->Next()) {
+        FrameFeatures features = extractor->Extract(frame->bgr, frame->depth_m, &frame->camera);
+        frame->bgr.release();  // not needed any more
+        frame->depth_m.release();
+        d->sessions[name].push_back({std::move(*frame), std::move(features)});
+      }
+    }
+    Mapper mapper(d->options);
+    for (const std::string name : {"1", "2", "3", "4", "5", "6"}) {
+      mapper.StartSession(name, std::nullopt);
+      for (const CachedFrame& f : d->sessions[name]) mapper.ProcessFrame(f.frame, f.features);
+    }
+    d->six_session_map = std::make_unique<Map>(mapper.Finish());
+    return d;
+  }();
+  return *data;
+}
+
+void BM_LocalizationStep(benchmark::State& state) {
+  BenchData& data = Data();
+  std::vector<double> steps_ms;
+  int relocalized = 0, frames = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    Localizer localizer(*data.six_session_map, data.options);
+    state.ResumeTiming();
+    double session_ms = 0.0;
+    for (const CachedFrame& f : data.sessions["A"]) {
+      const LocalizationRecord record = localizer.ProcessFrame(f.frame, f.features);
+      const double step_ms = record.timings.lcd_ms + record.timings.proximity_ms +
+                             record.timings.registration_ms;
+      steps_ms.push_back(step_ms);
+      session_ms += step_ms;
+      relocalized += record.relocalized;
+      ++frames;
+    }
+    state.SetIterationTime(session_ms / 1000.0);
+  }
+  state.counters["median_step_ms"] = SummarizeTimes(steps_ms).median_ms;
+  state.counters["mean_step_ms"] = SummarizeTimes(steps_ms).mean_ms;
+  state.counters["relocalized_pct"] = frames ? 100.0 * relocalized / frames : 0.0;
+  state.counters["map_nodes"] = static_cast<double>(data.six_session_map->nodes().size());
+  state.counters["frames"] = static_cast<double>(data.sessions["A"].size());
+}
+BENCHMARK(BM_LocalizationStep)->UseManualTime()->Iterations(3)->Unit(benchmark::kMillisecond);
+
+void BM_MapSession(benchmark::State& state) {
+  BenchData& data = Data();
+  const auto& frames = data.sessions["1"];
+  double total_ms = 0.0;
+  int sessions = 0;
+  for (auto _ : state) {
+    Stopwatch watch;
+    Mapper mapper(data.options);
+    mapper.StartSession("1", std::nullopt);
+    for (const CachedFrame& f : frames) mapper.ProcessFrame(f.frame, f.features);
+    benchmark::DoNotOptimize(mapper.Finish());
+    total_ms += watch.ElapsedMs();
+    ++sessions;
+  }
+  state.counters["frames"] = static_cast<double>(frames.size());
+  state.counters["ms_per_frame"] = total_ms / sessions / frames.size();
+}
+BENCHMARK(BM_MapSession)->Iterations(2)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace duskmap
+
+BENCHMARK_MAIN();

@@ -1,0 +1,78 @@
+// Options of the SLAM engine (both phases), composed from the sub-modules'
+// options (STYLE.md recommendation 3): the accessors copy the engine-wide
+// values (seed, features per node) into each sub-struct, so no module reads a
+// global. Defaults follow the paper's runs (spec appendix A).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "slam/core/json_fields.h"
+#include "slam/features/feature_options.h"
+#include "slam/graph/pose_graph_optimizer.h"
+#include "slam/registration/transform_estimation.h"
+#include "slam/retrieval/loop_closure_detector.h"
+#include "slam/retrieval/proximity.h"
+
+namespace duskmap {
+
+struct OdometryNoiseOptions {
+  // Odometry link information = diag(1/sigma^2); frames carry no covariance.
+  double linear_sigma_m = 0.01;    // per odometry link, metres
+  double angular_sigma_rad = 0.01; // per odometry link, radians
+  void Check() const;
+};
+
+struct MappingOptions {
+  bool proximity = true;         // RGBD/ProximityBySpace
+  int proximity_max_paths = 3;   // RGBD/ProximityMaxPaths while mapping
+  bool reduce_graph = false;     // Mem/ReduceGraph (spec §8), "1-2-3-4-5-6" maps
+  int short_term_memory = 10;    // Mem/STMSize: nodes are reduced when they leave it
+  void Check() const;
+};
+
+struct LocalizationOptions {
+  bool proximity = true;         // RGBD/ProximityBySpace (only once re-localized)
+  int proximity_max_paths = 1;   // RGBD/ProximityMaxPaths of the paper's localization runs
+  // Reference odometry-cache validation (spec §9.2, RGBD/MaxOdomCacheSize);
+  // 0 = paper-era rule: correct from the first accepted link. Only 0 is
+  // implemented so far; Check() rejects other values.
+  int odometry_cache_size = 0;
+  void Check() const;
+};
+
+struct EngineOptions {
+  FeatureOptions features;
+  LoopClosureOptions loop_closure;
+  ProximityOptions proximity;
+  RegistrationOptions registration;
+  PoseGraphOptimizerOptions optimizer;
+  OdometryNoiseOptions odometry;
+  MappingOptions mapping;
+  LocalizationOptions localization;
+  uint64_t random_seed = 0;  // seeds registration RANSAC and KD-trees
+
+  void Check() const;
+
+  // Sub-options with the shared values filled in.
+  LoopClosureOptions LoopClosure() const;
+  RegistrationOptions Registration() const;
+  ProximityOptions MappingProximity() const;
+  ProximityOptions LocalizationProximity() const;
+};
+
+// Reads EngineOptions from JSON such as
+//   {"features": {...}, "registration": {"min_inliers": 20},
+//    "loop_closure": {"loop_threshold": 0.11}, "proximity": {"local_radius_m": 1},
+//    "optimizer": {"max_error_ratio": 0}, "mapping": {"reduce_graph": true},
+//    "localization": {"odometry_cache_size": 0}, "random_seed": 0}
+// Unknown keys are rejected with their path; the result is checked.
+EngineOptions ReadEngineOptions(JsonFields& fields);
+EngineOptions ReadEngineOptionsFile(const std::string& path);
+
+// The engine-level values as JSON (stored in the map's metadata).
+nlohmann::json EngineOptionsToJson(const EngineOptions& options);
+
+}  // namespace duskmap

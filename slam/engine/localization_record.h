@@ -1,0 +1,63 @@
+// The typed per-frame record of the localization-only phase: what happened,
+// why a frame did not re-localize, the corrected pose and the stage timings.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "slam/core/graph_types.h"
+#include "slam/core/rigid3.h"
+#include "slam/eval/relocalization_metrics.h"
+#include "slam/registration/transform_estimation.h"
+#include "slam/retrieval/lcd_result.h"
+
+namespace duskmap {
+
+enum class LocalizationOutcome {
+  kRelocalized,           // a candidate's transform was accepted
+  kBadSignature,          // too few features to detect loops, and no proximity candidate
+  kNoCandidate,           // LCD proposed no hypothesis and proximity found none
+  kRegistrationRejected,  // every candidate's transform was rejected (see registration_status)
+};
+
+const char* LocalizationOutcomeName(LocalizationOutcome outcome);
+
+struct LocalizationTimings {
+  double features_ms = 0.0;      // extraction (0 when features were given)
+  double lcd_ms = 0.0;           // quantization, likelihood, Bayes filter
+  double proximity_ms = 0.0;     // candidate search around the corrected pose
+  double registration_ms = 0.0;  // transform estimations (TE)
+  double total_ms = 0.0;
+};
+
+struct LocalizationRecord {
+  int64_t frame_index = 0;
+  double timestamp_s = 0.0;
+  bool relocalized = false;
+  LocalizationOutcome outcome = LocalizationOutcome::kNoCandidate;
+  LcdStatus lcd_status = LcdStatus::kNoCandidates;
+  NodeId lcd_hypothesis = 0;  // 0 when LCD accepted none
+  int proximity_candidates = 0;
+  int candidates_tried = 0;
+  // Status of the last transform estimation tried (the accepted one when
+  // re-localized); nullopt when none ran.
+  std::optional<RegistrationStatus> registration_status;
+  NodeId matched_node = 0;         // 0 unless re-localized
+  SessionId matched_session = -1;  // session of matched_node
+  LinkType matched_by = LinkType::kLoopClosure;  // loop closure (LCD) or proximity
+  int inliers = 0;                 // of the accepted (or last tried) transform
+  int num_features = 0;
+  // Change of the corrected camera position at this re-localization, mm;
+  // nullopt at the first one (no prior pose) and when not re-localized.
+  std::optional<double> jump_mm;
+  // Corrected camera pose (map_from_odom * odom_from_camera); nullopt until
+  // the first re-localization.
+  std::optional<Rigid3d> map_from_camera;
+  double distance_since_last_m = 0.0;  // odometry path length since the last re-localization
+  LocalizationTimings timings;
+  // Filled by EvaluateLocalization when the frame has ground truth.
+  std::optional<RelocalizationCheck> check;
+};
+
+}  // namespace duskmap

@@ -1,0 +1,147 @@
+#include "slam/engine/localizer.h"
+
+#include <algorithm>
+#include <set>
+
+#include "slam/core/check.h"
+#include "slam/core/timer.h"
+#include "slam/retrieval/proximity.h"
+
+namespace duskmap {
+
+const char* LocalizationOutcomeName(LocalizationOutcome outcome) {
+  switch (outcome) {
+    case LocalizationOutcome::kRelocalized: return "relocalized";
+    case LocalizationOutcome::kBadSignature: return "bad_signature";
+    case LocalizationOutcome::kNoCandidate: return "no_candidate";
+    case LocalizationOutcome::kRegistrationRejected: return "registration_rejected";
+  }
+  return "unknown";
+}
+
+Localizer::Localizer(const Map& map, const EngineOptions& options)
+    : map_(map), options_(options), registration_(options.Registration()) {
+  options_.Check();
+  SLAM_THROW_IF_NOT(ConfigError, map.metadata().feature_type == options_.features.type)
+      << "Localizer: the map was built with feature type '" << map.metadata().feature_type
+      << "', the options ask for '" << options_.features.type << "'";
+  extractor_ = CreateFeatureExtractor(options_.features);
+  lcd_ = std::make_unique<LoopClosureDetector>(options_.LoopClosure());
+  for (const auto& [id, node] : map_.nodes()) lcd_->AddMapNode(id, node.session, node.features);
+  for (const auto& [key, link] : map_.links()) lcd_->graph().AddLink(link.from, link.to, link.type);
+}
+
+Localizer::~Localizer() = default;
+
+LocalizationRecord Localizer::ProcessFrame(const RgbdFrame& frame) {
+  Stopwatch watch;
+  const FrameFeatures features = extractor_->Extract(frame.bgr, frame.depth_m, &frame.camera);
+  const double features_ms = watch.ElapsedMs();
+  LocalizationRecord record = ProcessFrame(frame, features);
+  record.timings.features_ms = features_ms;
+  record.timings.total_ms += features_ms;
+  return record;
+}
+
+LocalizationRecord Localizer::ProcessFrame(const RgbdFrame& frame,
+                                           const FrameFeatures& features) {
+  Stopwatch total;
+  LocalizationRecord record;
+  record.frame_index = frame.frame_index;
+  record.timestamp_s = frame.timestamp_s;
+  record.num_features = static_cast<int>(features.size());
+  const Rigid3d odom_from_camera = frame.odom_from_camera();
+
+  Stopwatch lcd_watch;
+  const LcdResult lcd = lcd_->Localize(features);
+  record.timings.lcd_ms = lcd_watch.ElapsedMs();
+  record.lcd_status = lcd.status;
+  record.lcd_hypothesis = lcd.accepted() ? lcd.hypothesis : 0;
+
+  std::vector<Candidate> candidates = ProximityCandidates(odom_from_camera, &record);
+  if (lcd.accepted()) candidates.push_back({lcd.hypothesis, LinkType::kLoopClosure});
+  const bool had_pose = map_from_odom_.has_value();
+  const Eigen::Vector3d previous_position =
+      had_pose ? Eigen::Vector3d((*map_from_odom_ * odom_from_camera).translation)
+               : Eigen::Vector3d::Zero();
+  for (const Candidate& candidate : candidates) {
+    if (TryCandidate(candidate, frame, features, &record)) break;
+  }
+  if (record.relocalized) {
+    record.outcome = LocalizationOutcome::kRelocalized;
+    if (had_pose) {
+      record.jump_mm =
+          1000.0 * ((*map_from_odom_ * odom_from_camera).translation - previous_position).norm();
+    }
+  } else if (record.candidates_tried > 0) {
+    record.outcome = LocalizationOutcome::kRegistrationRejected;
+  } else {
+    record.outcome = lcd.status == LcdStatus::kBadSignature ? LocalizationOutcome::kBadSignature
+                                                            : LocalizationOutcome::kNoCandidate;
+  }
+  if (map_from_odom_) record.map_from_camera = *map_from_odom_ * odom_from_camera;
+  UpdateDistance(frame, &record);
+  record.timings.total_ms = total.ElapsedMs();
+  return record;
+}
+
+std::vector<Localizer::Candidate> Localizer::ProximityCandidates(const Rigid3d& odom_from_camera,
+                                                                 LocalizationRecord* record) {
+  std::vector<Candidate> candidates;
+  if (!map_from_odom_ || !options_.localization.proximity ||
+      options_.localization.proximity_max_paths == 0) {
+    return candidates;
+  }
+  Stopwatch watch;
+  // Poses are comparable only within the group of sessions the last
+  // re-localization belongs to (unconnected groups have their own frames).
+  std::set<SessionId> group;
+  for (const auto& g : map_.ConnectedSessionGroups()) {
+    if (std::find(g.begin(), g.end(), localized_session_) != g.end()) group.insert(g.begin(), g.end());
+  }
+  std::vector<ProximityNode> nodes;
+  for (const auto& [id, node] : map_.nodes()) {
+    if (group.count(node.session)) nodes.push_back({id, node.map_from_camera()});
+  }
+  const Likelihood& likelihood = lcd_->last_likelihood();
+  const ProximityResult proximity = FindProximityCandidates(
+      options_.LocalizationProximity(), *map_from_odom_ * odom_from_camera, nodes, lcd_->graph(),
+      [&likelihood](NodeId id) { return likelihood.Adjusted(id); });
+  for (const ProximityCandidate& c : proximity.candidates) {
+    candidates.push_back({c.node, LinkType::kProximity});
+  }
+  record->proximity_candidates = static_cast<int>(candidates.size());
+  record->timings.proximity_ms = watch.ElapsedMs();
+  return candidates;
+}
+
+bool Localizer::TryCandidate(const Candidate& candidate, const RgbdFrame& frame,
+                             const FrameFeatures& features, LocalizationRecord* record) {
+  const MapNode& node = map_.node(candidate.node);
+  Stopwatch watch;
+  const RegistrationResult registration =
+      EstimateTransform(registration_, node.features, node.camera, features, frame.camera);
+  record->timings.registration_ms += watch.ElapsedMs();
+  ++record->candidates_tried;
+  record->registration_status = registration.status;
+  record->inliers = registration.num_inliers;
+  if (!registration.accepted()) return false;
+  const Rigid3d map_from_camera = node.map_from_camera() * registration.node_from_query;
+  map_from_odom_ = map_from_camera * frame.odom_from_camera().Inverse();
+  localized_session_ = node.session;
+  record->relocalized = true;
+  record->matched_node = candidate.node;
+  record->matched_session = node.session;
+  record->matched_by = candidate.type;
+  return true;
+}
+
+void Localizer::UpdateDistance(const RgbdFrame& frame, LocalizationRecord* record) {
+  const Eigen::Vector3d position = frame.odom_from_camera().translation;
+  if (last_odom_position_) distance_since_last_m_ += (position - *last_odom_position_).norm();
+  last_odom_position_ = position;
+  record->distance_since_last_m = distance_since_last_m_;
+  if (record->relocalized) distance_since_last_m_ = 0.0;
+}
+
+}  // namespace duskmap

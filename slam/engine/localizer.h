@@ -1,0 +1,64 @@
+// The localization-only phase (spec §9) over a const Map: no node, link or
+// word survives the frame that created it. The session starts with no prior
+// pose; until the first re-localization only loop closure detection proposes
+// candidates, afterwards proximity detection around the corrected pose too
+// (tried first, as the reference computes the global transform after
+// proximity). As soon as one candidate's transform is accepted the others are
+// not tested (paper era, spec §9.3), and the map->odometry correction is set
+// from that link: map_from_odom = map_from_node_camera * node_from_query *
+// odom_from_camera^-1.
+//
+// The loop-closure state (vocabulary, inverted index, place graph, Bayes
+// filter) is rebuilt from the map's node descriptors in id order, so an
+// in-memory map and the same map saved and loaded give identical results.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "slam/core/rgbd_frame.h"
+#include "slam/engine/engine_options.h"
+#include "slam/engine/localization_record.h"
+#include "slam/features/feature_extractor.h"
+#include "slam/map/map.h"
+#include "slam/retrieval/loop_closure_detector.h"
+
+namespace duskmap {
+
+class Localizer {
+ public:
+  // Throws ConfigError when the map was built with another feature type.
+  Localizer(const Map& map, const EngineOptions& options);
+  ~Localizer();
+
+  LocalizationRecord ProcessFrame(const RgbdFrame& frame);
+  LocalizationRecord ProcessFrame(const RgbdFrame& frame, const FrameFeatures& features);
+
+  const std::optional<Rigid3d>& map_from_odom() const { return map_from_odom_; }
+  const FeatureExtractor& extractor() const { return *extractor_; }
+  const LoopClosureDetector& loop_closure() const { return *lcd_; }
+
+ private:
+  struct Candidate {
+    NodeId node = 0;
+    LinkType type = LinkType::kLoopClosure;
+  };
+  std::vector<Candidate> ProximityCandidates(const Rigid3d& odom_from_camera,
+                                             LocalizationRecord* record);
+  bool TryCandidate(const Candidate& candidate, const RgbdFrame& frame,
+                    const FrameFeatures& features, LocalizationRecord* record);
+  void UpdateDistance(const RgbdFrame& frame, LocalizationRecord* record);
+
+  const Map& map_;
+  EngineOptions options_;
+  RegistrationOptions registration_;
+  std::unique_ptr<FeatureExtractor> extractor_;
+  std::unique_ptr<LoopClosureDetector> lcd_;
+  std::optional<Rigid3d> map_from_odom_;
+  SessionId localized_session_ = -1;  // session of the last matched node
+  std::optional<Eigen::Vector3d> last_odom_position_;
+  double distance_since_last_m_ = 0.0;
+};
+
+}  // namespace duskmap

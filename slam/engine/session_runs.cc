@@ -1,0 +1,106 @@
+#include "slam/engine/session_runs.h"
+
+#include <algorithm>
+#include <numeric>
+
+#include "slam/core/check.h"
+#include "slam/core/timer.h"
+
+namespace duskmap {
+
+StageTimingSummary SummarizeTimes(std::vector<double> times_ms) {
+  StageTimingSummary s;
+  if (times_ms.empty()) return s;
+  std::sort(times_ms.begin(), times_ms.end());
+  const size_t n = times_ms.size();
+  s.median_ms = n % 2 ? times_ms[n / 2] : 0.5 * (times_ms[n / 2 - 1] + times_ms[n / 2]);
+  s.mean_ms = std::accumulate(times_ms.begin(), times_ms.end(), 0.0) / n;
+  s.max_ms = times_ms.back();
+  return s;
+}
+
+MapSummary SummarizeMap(const Map& map) {
+  MapSummary s;
+  s.num_sessions = static_cast<int>(map.sessions().size());
+  s.nodes_per_session.assign(map.sessions().size(), 0);
+  for (const auto& [id, node] : map.nodes()) ++s.nodes_per_session[node.session];
+  for (const auto& [key, link] : map.links()) ++s.links_by_type[LinkTypeName(link.type)];
+  s.connected_groups = map.ConnectedSessionGroups();
+  s.vocabulary_words = map.words().ids.size();
+  s.memory = ComputeMapMemory(map);
+  return s;
+}
+
+nlohmann::json MapSummaryToJson(const MapSummary& s) {
+  const MapMemory& m = s.memory;
+  return {{"sessions", s.num_sessions},
+          {"nodes_per_session", s.nodes_per_session},
+          {"links_by_type", s.links_by_type},
+          {"connected_session_groups", s.connected_groups},
+          {"vocabulary_words", s.vocabulary_words},
+          {"memory_bytes",
+           {{"descriptors", m.descriptors_bytes},
+            {"keypoints_points", m.keypoints_points_bytes},
+            {"words_index", m.words_index_bytes},
+            {"graph", m.graph_bytes},
+            {"filter", m.filter_bytes},
+            {"total", m.total_bytes()},
+            {"per_node", m.bytes_per_node()}}}};
+}
+
+MappingRun BuildMap(const DatasetReader& dataset, const std::vector<std::string>& sessions,
+                    const EngineOptions& options) {
+  SLAM_THROW_IF_NOT(InputError, !sessions.empty()) << "BuildMap: no session to map";
+  Stopwatch wall;
+  Mapper mapper(options);
+  MappingRun run;
+  std::map<std::string, std::vector<double>> times;
+  for (const std::string& name : sessions) {
+    std::unique_ptr<SessionReader> reader = dataset.OpenSession(name);
+    mapper.StartSession(name, reader->info().clock_time);
+    while (std::optional<RgbdFrame> frame = reader->Next()) {
+      MappingFrameResult result = mapper.ProcessFrame(*frame);
+      times["features"].push_back(result.timings.features_ms);
+      times["lcd"].push_back(result.timings.lcd_ms);
+      times["proximity"].push_back(result.timings.proximity_ms);
+      times["te"].push_back(result.timings.registration_ms);
+      times["optimization"].push_back(result.timings.optimization_ms);
+      times["total"].push_back(result.timings.total_ms);
+      run.frames.push_back(result);
+    }
+  }
+  run.map = mapper.Finish();
+  for (auto& [stage, values] : times) run.timings[stage] = SummarizeTimes(values);
+  run.wall_s = wall.ElapsedMs() / 1000.0;
+  return run;
+}
+
+LocalizationRun LocalizeSession(const Map& map, SessionReader& session,
+                                const EngineOptions& options,
+                                const RelocalizationMetricsOptions& metrics) {
+  Stopwatch wall;
+  Localizer localizer(map, options);
+  LocalizationRun run;
+  std::vector<std::optional<Rigid3d>> truth;
+  std::vector<Eigen::Vector3d> positions;
+  std::map<std::string, std::vector<double>> times;
+  session.Rewind();
+  while (std::optional<RgbdFrame> frame = session.Next()) {
+    LocalizationRecord record = localizer.ProcessFrame(*frame);
+    truth.push_back(frame->world_from_camera);
+    positions.push_back(frame->odom_from_camera().translation);
+    times["features"].push_back(record.timings.features_ms);
+    times["lcd"].push_back(record.timings.lcd_ms);
+    times["proximity"].push_back(record.timings.proximity_ms);
+    times["te"].push_back(record.timings.registration_ms);
+    times["lcd_te"].push_back(record.timings.lcd_ms + record.timings.registration_ms);
+    times["total"].push_back(record.timings.total_ms);
+    run.records.push_back(std::move(record));
+  }
+  run.summary = EvaluateLocalization(map, truth, positions, metrics, &run.records);
+  for (auto& [stage, values] : times) run.timings[stage] = SummarizeTimes(values);
+  run.wall_s = wall.ElapsedMs() / 1000.0;
+  return run;
+}
+
+}  // namespace duskmap

@@ -1,0 +1,66 @@
+// Drivers that run whole sessions through the engine: mapping several input
+// sessions back to back into one map, and localizing one session against a
+// map, with the summaries the CLI and the experiment runner report.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "slam/engine/engine_options.h"
+#include "slam/engine/localization_evaluation.h"
+#include "slam/engine/localizer.h"
+#include "slam/engine/mapper.h"
+#include "slam/io/dataset_reader.h"
+#include "slam/map/map_memory.h"
+
+namespace duskmap {
+
+struct StageTimingSummary {
+  double median_ms = 0.0;
+  double mean_ms = 0.0;
+  double max_ms = 0.0;
+};
+
+// Median, mean and max of a list of per-frame times (zeros when empty).
+StageTimingSummary SummarizeTimes(std::vector<double> times_ms);
+
+struct MapSummary {
+  int num_sessions = 0;
+  std::vector<int> nodes_per_session;                        // by session id
+  std::map<std::string, int> links_by_type;                  // "odometry", "loop_closure", ...
+  std::vector<std::vector<SessionId>> connected_groups;      // sessions joined by links
+  size_t vocabulary_words = 0;
+  MapMemory memory;
+};
+
+MapSummary SummarizeMap(const Map& map);
+nlohmann::json MapSummaryToJson(const MapSummary& summary);
+
+struct MappingRun {
+  Map map;
+  std::vector<MappingFrameResult> frames;
+  std::map<std::string, StageTimingSummary> timings;  // "features", "lcd", ...
+  double wall_s = 0.0;
+};
+
+// Replays `sessions` of `dataset` (in order) into one map.
+MappingRun BuildMap(const DatasetReader& dataset, const std::vector<std::string>& sessions,
+                    const EngineOptions& options);
+
+struct LocalizationRun {
+  std::vector<LocalizationRecord> records;
+  LocalizationSummary summary;
+  std::map<std::string, StageTimingSummary> timings;  // "features", "lcd", "te", "lcd_te", ...
+  double wall_s = 0.0;
+};
+
+// Localizes every frame of `session` against `map` (read-only) and evaluates
+// the re-localizations where the frames have ground truth.
+LocalizationRun LocalizeSession(const Map& map, SessionReader& session,
+                                const EngineOptions& options,
+                                const RelocalizationMetricsOptions& metrics = {});
+
+}  // namespace duskmap

@@ -1,0 +1,58 @@
+#include "slam/engine/engine_options.h"
+
+#include <gtest/gtest.h>
+
+#include "slam/core/check.h"
+
+namespace duskmap {
+namespace {
+
+TEST(ReadEngineOptions, ReadsNestedValues) {
+  const auto json = nlohmann::json::parse(R"({
+    "features": {"type": "sift", "vocabulary_features": 300},
+    "registration": {"min_inliers": 15},
+    "loop_closure": {"loop_threshold": 0.2},
+    "proximity": {"local_radius_m": 2.0},
+    "mapping": {"reduce_graph": true},
+    "localization": {"proximity_max_paths": 2},
+    "random_seed": 9})");
+  JsonFields fields(json, "engine.json");
+  const EngineOptions o = ReadEngineOptions(fields);
+  EXPECT_EQ(o.features.type, "sift");
+  EXPECT_EQ(o.registration.min_inliers, 15);
+  EXPECT_TRUE(o.mapping.reduce_graph);
+  EXPECT_EQ(o.LoopClosure().vocabulary.max_features_per_node, 300);
+  EXPECT_DOUBLE_EQ(o.LoopClosure().loop_threshold, 0.2);
+  EXPECT_EQ(o.LocalizationProximity().max_paths, 2);
+  EXPECT_EQ(o.MappingProximity().max_paths, 3);
+  EXPECT_DOUBLE_EQ(o.MappingProximity().local_radius_m, 2.0);
+  EXPECT_EQ(o.Registration().pnp.random_seed, 9u);
+}
+
+TEST(ReadEngineOptions, RejectsUnknownKeysWithPath) {
+  JsonFields fields(nlohmann::json::parse(R"({"mapping": {"reduce": true}})"), "engine.json");
+  try {
+    ReadEngineOptions(fields);
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("engine.json.mapping"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("reduce"), std::string::npos) << e.what();
+  }
+}
+
+TEST(EngineOptions, CheckNamesField) {
+  EngineOptions o;
+  o.localization.odometry_cache_size = -1;
+  EXPECT_THROW(o.Check(), ConfigError);
+  o = EngineOptions();
+  o.odometry.linear_sigma_m = 0.0;
+  try {
+    o.Check();
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("linear_sigma_m"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace duskmap

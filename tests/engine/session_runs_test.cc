@@ -1,0 +1,136 @@
+// End-to-end tests of the engine on tiny synthetic sessions (the issue's
+// list): same-light re-localization, the day/night effect, merging, graph
+// reduction, and store round trip with a read-only map.
+#include "slam/engine/session_runs.h"
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include <gtest/gtest.h>
+
+#include "slam/eval/trajectory_error.h"
+#include "slam/io/synthetic_dataset.h"
+#include "slam/map/map_store.h"
+#include "tests/engine/tiny_dataset.h"
+
+namespace duskmap {
+namespace {
+
+testing::TinyDatasetCleanup cleanup;
+
+EngineOptions TestOptions() {
+  EngineOptions options;
+  options.features.type = "surf";
+  return options;
+}
+
+class EngineSessions : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dataset_ = OpenSyntheticDataset(testing::TinyDatasetPath()).release();
+  }
+  static void TearDownTestSuite() {
+    delete dataset_;
+    dataset_ = nullptr;
+  }
+  // Maps are built once per process and shared by the tests.
+  static const MappingRun& MapOf(const std::string& label, std::vector<std::string> sessions,
+                                 bool reduce) {
+    static std::map<std::string, MappingRun> cache;
+    auto it = cache.find(label);
+    if (it == cache.end()) {
+      EngineOptions options = TestOptions();
+      options.mapping.reduce_graph = reduce;
+      it = cache.emplace(label, BuildMap(*dataset_, sessions, options)).first;
+    }
+    return it->second;
+  }
+  static LocalizationRun Localize(const Map& map, const std::string& session) {
+    std::unique_ptr<SessionReader> reader = dataset_->OpenSession(session);
+    return LocalizeSession(map, *reader, TestOptions());
+  }
+  static DatasetReader* dataset_;
+};
+
+DatasetReader* EngineSessions::dataset_ = nullptr;
+
+std::string FileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+TEST_F(EngineSessions, SameLightSessionRelocalizes) {
+  const MappingRun& map1 = MapOf("1", {"1"}, false);
+  const LocalizationRun run = Localize(map1.map, "A");
+  const RelocalizationSummary& s = run.summary.relocalization;
+  EXPECT_TRUE(run.summary.evaluated);
+  EXPECT_GE(s.relocalized_pct, 90.0) << s.num_relocalized << " of " << s.num_frames;
+  EXPECT_EQ(s.num_wrong, 0);
+}
+
+TEST_F(EngineSessions, NightSessionNeedsANightMap) {
+  const LocalizationRun day_only = Localize(MapOf("1", {"1"}, false).map, "F");
+  const LocalizationRun day_night = Localize(MapOf("1+6", {"1", "6"}, false).map, "F");
+  EXPECT_EQ(day_only.summary.relocalization.num_wrong, 0);
+  EXPECT_EQ(day_night.summary.relocalization.num_wrong, 0);
+  EXPECT_GE(day_night.summary.relocalization.relocalized_pct,
+            day_only.summary.relocalization.relocalized_pct + 20.0)
+      << "day map " << day_only.summary.relocalization.relocalized_pct << "%, day+night map "
+      << day_night.summary.relocalization.relocalized_pct << "%";
+}
+
+TEST_F(EngineSessions, MergingTwoSessionsGivesOneAccurateMap) {
+  const Map& map = MapOf("1+2", {"1", "2"}, false).map;
+  EXPECT_EQ(map.ConnectedSessionGroups().size(), 1u);
+  std::vector<Rigid3d> estimated, truth;
+  for (const auto& [id, node] : map.nodes()) {
+    ASSERT_TRUE(node.truth_from_camera.has_value());
+    estimated.push_back(node.map_from_camera());
+    truth.push_back(*node.truth_from_camera);
+  }
+  const AteResult ate = ComputeAte(estimated, truth);
+  EXPECT_LT(ate.rmse_m, 0.05) << "ATE " << ate.rmse_m << " m over " << ate.num_poses << " nodes";
+}
+
+TEST_F(EngineSessions, GraphReductionShrinksRepeatedRouteAndStaysConnected) {
+  const Map& full = MapOf("1+2", {"1", "2"}, false).map;
+  const Map& reduced = MapOf("1-2", {"1", "2"}, true).map;
+  EXPECT_LT(reduced.nodes().size(), full.nodes().size());
+  EXPECT_LT(reduced.NodesOfSession(1).size(), full.NodesOfSession(1).size());
+  EXPECT_EQ(reduced.ConnectedSessionGroups().size(), 1u);
+  EXPECT_FALSE(reduced.NodesOfSession(1).empty());  // the session anchor stays
+  const LocalizationRun run = Localize(reduced, "A");
+  EXPECT_EQ(run.summary.relocalization.num_wrong, 0);
+}
+
+TEST_F(EngineSessions, StoredMapLocalizesIdenticallyAndStaysUnchanged) {
+  const Map& map = MapOf("1", {"1"}, false).map;
+  const std::string dir = testing::TinyDatasetPath() + "_maps";
+  std::filesystem::create_directories(dir);
+  const std::string before = dir + "/before.db", after = dir + "/after.db";
+  SaveMap(map, before);
+  const LocalizationRun in_memory = Localize(map, "A");
+  SaveMap(map, after);
+  EXPECT_EQ(FileBytes(before), FileBytes(after)) << "localization modified the map";
+
+  MapLoadOptions load_options;
+  load_options.expected_feature_type = "surf";
+  const Map loaded = LoadMap(before, load_options);
+  const LocalizationRun from_file = Localize(loaded, "A");
+  ASSERT_EQ(in_memory.records.size(), from_file.records.size());
+  for (size_t i = 0; i < in_memory.records.size(); ++i) {
+    const LocalizationRecord &a = in_memory.records[i], &b = from_file.records[i];
+    EXPECT_EQ(a.relocalized, b.relocalized) << "frame " << i;
+    EXPECT_EQ(a.matched_node, b.matched_node) << "frame " << i;
+    EXPECT_EQ(a.inliers, b.inliers) << "frame " << i;
+    ASSERT_EQ(a.map_from_camera.has_value(), b.map_from_camera.has_value());
+    if (a.map_from_camera) {
+      EXPECT_EQ(a.map_from_camera->translation, b.map_from_camera->translation) << "frame " << i;
+    }
+  }
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace duskmap

@@ -1,0 +1,54 @@
+// A tiny synthetic dataset for the engine's tests (320x240, the first frames
+// of the patrol route), generated once per test process into /tmp.
+#pragma once
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+
+#include "slam/io/synthetic_dataset.h"
+#include "slam/synthetic/generator.h"
+
+namespace duskmap::testing {
+
+// Mapping sessions "1" (16:46), "2" (16:56) and "6" (19:35); localization
+// sessions "A" (16:51) and "F" (19:42).
+inline const std::string& TinyDatasetPath() {
+  static const std::string path = [] {
+    const std::string p = (std::filesystem::temp_directory_path() /
+                           ("duskmap_engine_tiny_" + std::to_string(::getpid())))
+                              .string();
+    GeneratorConfig config;
+    config.max_frames = 30;
+    config.threads = 2;
+    config.camera.width = 320;
+    config.camera.height = 240;
+    config.camera.fx = 262.5;
+    config.camera.fy = 262.5;
+    config.sessions = {{"1", "16:46", "mapping"},
+                       {"2", "16:56", "mapping"},
+                       {"6", "19:35", "mapping"},
+                       {"A", "16:51", "localization"},
+                       {"F", "19:42", "localization"}};
+    GenerateOptions options;
+    options.output_path = p;
+    options.overwrite = true;
+    GenerateDataset(config, options);
+    return p;
+  }();
+  return path;
+}
+
+// Removes the dataset at process exit.
+struct TinyDatasetCleanup {
+  ~TinyDatasetCleanup() {
+    std::error_code ignored;
+    std::filesystem::remove_all(
+        std::filesystem::temp_directory_path() /
+            ("duskmap_engine_tiny_" + std::to_string(::getpid())),
+        ignored);
+  }
+};
+
+}  // namespace duskmap::testing
