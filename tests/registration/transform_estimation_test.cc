@@ -102,6 +102,29 @@ TEST(EstimateTransform, SecondPassRecoversAmbiguousFeatures) {
   ExpectPoseNear(pair.node_from_query, both.node_from_query, 0.01, 0.5);
 }
 
+TEST(EstimateTransform, FailedSecondPassFailsTheRegistration) {
+  SyntheticPairOptions data;
+  data.pixel_noise_px = 1.0;
+  const SyntheticPair pair = MakeSyntheticPair(data);
+  RegistrationOptions tiny_window;
+  tiny_window.guess_window_px = 0.01;  // no query keypoint within 0.01 px of a projection
+  const RegistrationResult result = Estimate(pair, tiny_window);
+  EXPECT_EQ(result.status, RegistrationStatus::kSecondPassTooFewMatches);
+  EXPECT_TRUE(result.second_pass_ran);
+  EXPECT_GE(result.inliers_first_pass, 20);  // the first pass alone would have been accepted
+  EXPECT_EQ(result.node_from_query.translation, Eigen::Vector3d::Zero());
+}
+
+TEST(EstimateTransform, VarianceLimitRejects) {
+  const SyntheticPair pair = MakeSyntheticPair({});  // no query depth: 10 % depth error term
+  RegistrationOptions strict;
+  strict.information.max_linear_variance_m2 = 1e-6;
+  const RegistrationResult result = Estimate(pair, strict);
+  EXPECT_EQ(result.status, RegistrationStatus::kVarianceTooHigh);
+  EXPECT_STREQ(RegistrationStatusName(result.status), "variance_too_high");
+  EXPECT_GE(result.num_inliers, 20);
+}
+
 TEST(EstimateTransform, DeterministicForFixedSeed) {
   SyntheticPairOptions data;
   data.seed = 11;
