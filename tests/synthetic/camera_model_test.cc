@@ -1,5 +1,7 @@
 #include "slam/synthetic/camera_model.h"
 
+#include "slam/core/check.h"
+
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 

@@ -1,5 +1,7 @@
 #include "slam/synthetic/lighting.h"
 
+#include "slam/core/check.h"
+
 #include <gtest/gtest.h>
 
 #include "slam/synthetic/apartment.h"

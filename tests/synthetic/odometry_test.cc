@@ -1,5 +1,7 @@
 #include "slam/synthetic/odometry.h"
 
+#include "slam/core/check.h"
+
 #include <algorithm>
 
 #include <gtest/gtest.h>
