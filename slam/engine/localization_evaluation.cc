@@ -8,7 +8,7 @@ namespace duskmap {
 namespace {
 
 // truth_from_map of the session group containing `session`, or nullopt when
-// its nodes lack ground truth (fewer than 3 or degenerate).
+// none of its nodes has ground truth.
 std::optional<Rigid3d> AlignGroup(const Map& map, SessionId session) {
   std::vector<SessionId> group;
   for (const auto& g : map.ConnectedSessionGroups()) {
@@ -21,12 +21,8 @@ std::optional<Rigid3d> AlignGroup(const Map& map, SessionId session) {
     map_poses.push_back(node.map_from_camera());
     truth_poses.push_back(*node.truth_from_camera);
   }
-  if (map_poses.size() < 3) return std::nullopt;
-  try {
-    return AlignMapToTruth(map_poses, truth_poses);
-  } catch (const InputError&) {
-    return std::nullopt;  // degenerate (e.g. a straight route): not evaluable
-  }
+  if (map_poses.empty()) return std::nullopt;
+  return AlignMapToTruth(map_poses, truth_poses);
 }
 
 }  // namespace
@@ -35,7 +31,8 @@ LocalizationSummary EvaluateLocalization(const Map& map,
                                          const std::vector<std::optional<Rigid3d>>& truth_from_camera,
                                          const std::vector<Eigen::Vector3d>& odom_positions,
                                          const RelocalizationMetricsOptions& options,
-                                         std::vector<LocalizationRecord>* records) {
+                                         std::vector<LocalizationRecord>* records,
+                                         TruthAlignment alignment) {
   SLAM_THROW_IF_NOT(InputError, truth_from_camera.size() == records->size() &&
                                     odom_positions.size() == records->size())
       << "EvaluateLocalization: " << records->size() << " records, " << truth_from_camera.size()
@@ -47,6 +44,7 @@ LocalizationSummary EvaluateLocalization(const Map& map,
   int num_jumps = 0;
   for (size_t i = 0; i < records->size(); ++i) {
     LocalizationRecord& r = (*records)[i];
+    r.check.reset();
     relocalized.push_back(r.relocalized);
     if (!r.relocalized) continue;
     summary.mean_inliers += r.inliers;
@@ -55,10 +53,18 @@ LocalizationSummary EvaluateLocalization(const Map& map,
       ++num_jumps;
     }
     if (!truth_from_camera[i]) continue;
-    if (!alignments.count(r.matched_session)) {
-      alignments[r.matched_session] = AlignGroup(map, r.matched_session);
+    std::optional<Rigid3d> truth_from_map;
+    if (alignment == TruthAlignment::kMatchedNode) {
+      const MapNode& node = map.node(r.matched_node);
+      if (node.truth_from_camera) {
+        truth_from_map = *node.truth_from_camera * node.map_from_camera().Inverse();
+      }
+    } else {
+      if (!alignments.count(r.matched_session)) {
+        alignments[r.matched_session] = AlignGroup(map, r.matched_session);
+      }
+      truth_from_map = alignments[r.matched_session];
     }
-    const std::optional<Rigid3d>& truth_from_map = alignments[r.matched_session];
     if (!truth_from_map) continue;
     r.check = ClassifyRelocalization(*truth_from_map, *r.map_from_camera, *truth_from_camera[i],
                                      options);

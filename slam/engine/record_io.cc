@@ -132,7 +132,7 @@ void WriteCsv(std::ostream& out, const std::vector<nlohmann::json>& rows) {
 
 void WriteCorrectedTrajectory(const std::string& path,
                               const std::vector<LocalizationRecord>& records) {
-  std::vector<StampedPose> poses;
+  std::vector<TrajectoryPose> poses;
   for (const LocalizationRecord& r : records) {
     if (r.map_from_camera) poses.push_back({r.timestamp_s, *r.map_from_camera});
   }

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <Eigen/SVD>
+
 #include "slam/core/check.h"
 
 namespace duskmap {
@@ -45,12 +47,21 @@ Rigid3d AlignMapToTruth(const std::vector<Rigid3d>& map_from_node_camera,
   SLAM_THROW_IF_NOT(InputError, map_from_node_camera.size() == truth_from_node_camera.size())
       << "AlignMapToTruth: " << map_from_node_camera.size() << " map poses but "
       << truth_from_node_camera.size() << " ground-truth poses";
-  std::vector<Eigen::Vector3d> source, target;
+  SLAM_THROW_IF_NOT(InputError, !map_from_node_camera.empty()) << "AlignMapToTruth: no pose";
+  Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
   for (size_t i = 0; i < map_from_node_camera.size(); ++i) {
-    source.push_back(map_from_node_camera[i].translation);
-    target.push_back(truth_from_node_camera[i].translation);
+    sum += truth_from_node_camera[i].rotation.toRotationMatrix() *
+           map_from_node_camera[i].rotation.toRotationMatrix().transpose();
   }
-  return AlignPoints(source, target).target_from_source;
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(sum, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d sign = Eigen::Matrix3d::Identity();
+  if (svd.matrixU().determinant() * svd.matrixV().determinant() < 0.0) sign(2, 2) = -1.0;
+  const Eigen::Matrix3d rotation = svd.matrixU() * sign * svd.matrixV().transpose();
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < map_from_node_camera.size(); ++i) {
+    translation += truth_from_node_camera[i].translation - rotation * map_from_node_camera[i].translation;
+  }
+  return Rigid3d(rotation, translation / static_cast<double>(map_from_node_camera.size()));
 }
 
 RelocalizationSummary SummarizeRelocalizations(int num_frames,

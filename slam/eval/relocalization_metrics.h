@@ -52,9 +52,11 @@ RelocalizationCheck ClassifyRelocalization(const Rigid3d& truth_from_map,
                                            const RelocalizationMetricsOptions& options);
 
 // SE(3) alignment of the map to the ground truth from the camera poses of
-// map nodes and their ground truth (paired by index); throws InputError like
-// AlignPoints. The rotation is taken from the position alignment, which is
-// what a trajectory evaluation would do with no orientation data.
+// map nodes and their ground truth (paired by index). The rotation is the
+// chordal mean of truth_R_i * map_R_i^T (projected onto SO(3) by SVD), so it
+// is well determined even for a straight route where positions alone leave
+// the roll about the path free; the translation is then the mean of
+// truth_t_i - R * map_t_i. Throws InputError for a size mismatch or no pose.
 Rigid3d AlignMapToTruth(const std::vector<Rigid3d>& map_from_node_camera,
                         const std::vector<Rigid3d>& truth_from_node_camera);
 

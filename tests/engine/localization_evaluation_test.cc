@@ -44,8 +44,9 @@ TEST(EvaluateLocalization, ClassifiesCorrectAndWrong) {
   }
   records[3].map_from_camera->translation += Eigen::Vector3d(1.0, 0, 0);
   records[3].jump_mm = 1000.0;
-  const LocalizationSummary summary =
-      EvaluateLocalization(map, truth, positions, RelocalizationMetricsOptions(), &records);
+  for (int i : {1, 3}) records[i].matched_node = 2;
+  const LocalizationSummary summary = EvaluateLocalization(
+      map, truth, positions, RelocalizationMetricsOptions(), &records, TruthAlignment::kWholeMap);
   EXPECT_TRUE(summary.evaluated);
   EXPECT_EQ(summary.relocalization.num_relocalized, 2);
   EXPECT_EQ(summary.relocalization.num_correct, 1);
@@ -56,6 +57,30 @@ TEST(EvaluateLocalization, ClassifiesCorrectAndWrong) {
   EXPECT_DOUBLE_EQ(summary.mean_inliers, 30.0);
   EXPECT_DOUBLE_EQ(summary.mean_jump_mm, 1000.0);
   EXPECT_DOUBLE_EQ(summary.gaps.max_gap_m, 1.0);  // frame 1 -> frame 3
+}
+
+TEST(EvaluateLocalization, MatchedNodeAlignmentIgnoresDistantMapDrift) {
+  const Rigid3d truth_from_map(Eigen::Quaterniond::Identity(), {1, 0, 0});
+  Map map = MapWithTruth(truth_from_map);
+  // Node 6's map pose drifted by 10 deg: a whole-map alignment blames the
+  // re-localization, the matched-node alignment does not.
+  MapNode& drifted = map.mutable_node(6);
+  drifted.map_from_body = drifted.map_from_body *
+      Rigid3d(Eigen::Quaterniond(Eigen::AngleAxisd(0.17, Eigen::Vector3d::UnitZ())), {0, 0, 0});
+  const Rigid3d node_from_camera(Eigen::Quaterniond::Identity(), {0.2, 0, 0.1});
+  std::vector<LocalizationRecord> records(1);
+  records[0].relocalized = true;
+  records[0].matched_node = 6;
+  records[0].matched_session = 0;
+  records[0].map_from_camera = drifted.map_from_camera() * node_from_camera;
+  const std::vector<std::optional<Rigid3d>> truth = {*drifted.truth_from_camera * node_from_camera};
+  const std::vector<Eigen::Vector3d> positions = {Eigen::Vector3d::Zero()};
+  EvaluateLocalization(map, truth, positions, RelocalizationMetricsOptions(), &records);
+  EXPECT_TRUE(records[0].check->correct);
+  EvaluateLocalization(map, truth, positions, RelocalizationMetricsOptions(), &records,
+                       TruthAlignment::kWholeMap);
+  EXPECT_FALSE(records[0].check->correct) << records[0].check->error.rotation_deg << " deg, "
+                                          << records[0].check->error.translation_m << " m";
 }
 
 TEST(EvaluateLocalization, RejectsSizeMismatch) {

@@ -58,6 +58,20 @@ TEST(AlignMapToTruth, RecoversMapFrame) {
   EXPECT_THROW(AlignMapToTruth(map_poses, truth_poses), InputError);
 }
 
+TEST(AlignMapToTruth, StraightRouteUsesOrientations) {
+  // Collinear positions leave the roll about the line free; orientations fix it.
+  const Rigid3d truth_from_map(
+      Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX())), {1, 2, 3});
+  std::vector<Rigid3d> map_poses, truth_poses;
+  for (int i = 0; i < 5; ++i) {
+    map_poses.push_back(Yaw(i * 3, {1.0 * i, 0, 0}));
+    truth_poses.push_back(truth_from_map * map_poses.back());
+  }
+  EXPECT_TRUE(AlignMapToTruth(map_poses, truth_poses)
+                  .ToMatrix()
+                  .isApprox(truth_from_map.ToMatrix(), 1e-9));
+}
+
 TEST(SummarizeRelocalizations, CountsWrongSeparately) {
   RelocalizationCheck good, wrong;
   good.correct = true;
