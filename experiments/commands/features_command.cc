@@ -6,6 +6,8 @@
 #include <memory>
 #include <sstream>
 
+#include <opencv2/core/utility.hpp>
+
 #include "experiments/command_registry.h"
 #include "slam/core/check.h"
 #include "slam/core/json_fields.h"
@@ -19,6 +21,7 @@ struct EvalArgs {
   std::string types = "surf,sift,brief,brisk,kaze,daisy,orb,akaze,freak";
   std::string config;
   std::string out_dir;
+  int threads = 1;
 };
 
 std::vector<std::string> SplitComma(const std::string& text) {
@@ -37,6 +40,8 @@ void WriteFile(const std::filesystem::path& path, const std::string& text) {
 }
 
 int RunEval(const EvalArgs& args) {
+  SLAM_THROW_IF_NOT(ConfigError, args.threads >= 1) << "features eval: --threads must be >= 1";
+  cv::setNumThreads(args.threads);  // timings per core by default, like the benchmark
   FeatureEvalOptions options;
   options.types = SplitComma(args.types);
   if (!args.config.empty()) {
@@ -70,6 +75,7 @@ RunFn SetupFeatures(CLI::App& command) {
       ->required();
   eval->add_option("--types", args->types, "comma-separated feature types");
   eval->add_option("--config", args->config, "JSON feature options (FeatureOptions)");
+  eval->add_option("--threads", args->threads, "OpenCV threads (1: per-core timings)");
   eval->add_option("--out", args->out_dir, "folder for features_eval.json and features_eval.md");
   return [args, eval] {
     SLAM_THROW_IF_NOT(ConfigError, eval->parsed()) << "features: expected a subcommand (eval)";
