@@ -10,10 +10,10 @@
 
 namespace duskmap {
 
-std::vector<StampedPose> ReadTrajectory(const std::string& path) {
+std::vector<TrajectoryPose> ReadTrajectory(const std::string& path) {
   std::ifstream in(path);
   SLAM_THROW_IF_NOT(InputError, in.good()) << path << ": cannot open trajectory file";
-  std::vector<StampedPose> poses;
+  std::vector<TrajectoryPose> poses;
   std::string line;
   int line_number = 0;
   while (std::getline(in, line)) {
@@ -38,13 +38,13 @@ std::vector<StampedPose> ReadTrajectory(const std::string& path) {
   return poses;
 }
 
-void WriteTrajectory(const std::string& path, const std::vector<StampedPose>& poses,
+void WriteTrajectory(const std::string& path, const std::vector<TrajectoryPose>& poses,
                      const std::string& header_comment) {
   std::ofstream out(path);
   SLAM_THROW_IF_NOT(InputError, out.good()) << path << ": cannot write trajectory file";
   if (!header_comment.empty()) out << "# " << header_comment << "\n";
   out << "# timestamp tx ty tz qx qy qz qw\n";
-  for (const StampedPose& p : poses) {
+  for (const TrajectoryPose& p : poses) {
     const Eigen::Quaterniond& q = p.pose.rotation;
     const Eigen::Vector3d& t = p.pose.translation;
     out << std::fixed << std::setprecision(6) << p.timestamp_s << std::setprecision(9) << " "
@@ -55,26 +55,26 @@ void WriteTrajectory(const std::string& path, const std::vector<StampedPose>& po
   SLAM_THROW_IF_NOT(InputError, out.good()) << path << ": write failed";
 }
 
-std::optional<Rigid3d> InterpolatePose(const std::vector<StampedPose>& poses, double timestamp_s,
+std::optional<Rigid3d> InterpolatePose(const std::vector<TrajectoryPose>& poses, double timestamp_s,
                                        double max_gap_s) {
   if (poses.empty()) return std::nullopt;
   const auto after = std::lower_bound(
       poses.begin(), poses.end(), timestamp_s,
-      [](const StampedPose& p, double t) { return p.timestamp_s < t; });
+      [](const TrajectoryPose& p, double t) { return p.timestamp_s < t; });
   if (after != poses.end() && after->timestamp_s == timestamp_s) return after->pose;
   if (after != poses.end() && after != poses.begin()) {
-    const StampedPose& a = *(after - 1);
-    const StampedPose& b = *after;
+    const TrajectoryPose& a = *(after - 1);
+    const TrajectoryPose& b = *after;
     if (timestamp_s - a.timestamp_s <= max_gap_s && b.timestamp_s - timestamp_s <= max_gap_s) {
       const double s = (timestamp_s - a.timestamp_s) / (b.timestamp_s - a.timestamp_s);
       return Rigid3d(a.pose.rotation.slerp(s, b.pose.rotation),
                      (1.0 - s) * a.pose.translation + s * b.pose.translation);
     }
   }
-  const StampedPose* nearest = nullptr;
+  const TrajectoryPose* nearest = nullptr;
   if (after != poses.end()) nearest = &*after;
   if (after != poses.begin()) {
-    const StampedPose& before = *(after - 1);
+    const TrajectoryPose& before = *(after - 1);
     if (nearest == nullptr ||
         timestamp_s - before.timestamp_s < nearest->timestamp_s - timestamp_s) {
       nearest = &before;

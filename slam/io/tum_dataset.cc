@@ -78,7 +78,7 @@ std::vector<FrameEntry> Associate(const std::vector<IndexEntry>& rgb,
   return frames;
 }
 
-std::vector<StampedPose> ReadOptionalTrajectory(const std::string& path) {
+std::vector<TrajectoryPose> ReadOptionalTrajectory(const std::string& path) {
   if (!fs::exists(path)) return {};
   return ReadTrajectory(path);
 }
@@ -137,8 +137,8 @@ class TumSessionReader : public SessionReader {
   SessionInfo info_;
   TumCalibration calibration_;
   std::vector<FrameEntry> frames_;
-  std::vector<StampedPose> ground_truth_;
-  std::vector<StampedPose> odometry_;
+  std::vector<TrajectoryPose> ground_truth_;
+  std::vector<TrajectoryPose> odometry_;
   size_t next_ = 0;
 };
 

@@ -29,8 +29,8 @@ class TumSessionWriter {
   TumCalibration calibration_;
   std::vector<std::string> rgb_lines_;
   std::vector<std::string> depth_lines_;
-  std::vector<StampedPose> ground_truth_;
-  std::vector<StampedPose> odometry_;
+  std::vector<TrajectoryPose> ground_truth_;
+  std::vector<TrajectoryPose> odometry_;
   bool finished_ = false;
 };
 

@@ -24,7 +24,7 @@ namespace duskmap {
 namespace {
 
 void WriteSessionJson(const std::string& path, const SessionSpec& spec, const Scene& scene,
-                      const SessionLighting& lighting, uint64_t seed, const SessionSummary& summary) {
+                      const SessionLighting& lighting, uint64_t seed, const GeneratedSessionSummary& summary) {
   nlohmann::json lamps = nlohmann::json::array();
   for (size_t i = 0; i < scene.lamps.size(); ++i) {
     lamps.push_back({{"name", scene.lamps[i].name}, {"room", scene.room_names[scene.lamps[i].room]},
@@ -49,7 +49,7 @@ void WriteSessionJson(const std::string& path, const SessionSpec& spec, const Sc
   SLAM_THROW_IF_NOT(InputError, out.good()) << path << ": write failed";
 }
 
-SessionSummary GenerateSession(const GeneratorConfig& config, const Scene& scene, size_t index,
+GeneratedSessionSummary GenerateSession(const GeneratorConfig& config, const Scene& scene, size_t index,
                                const std::string& folder, SessionPreview* preview) {
   Stopwatch watch;
   const SessionSpec& spec = config.sessions[index];
@@ -69,7 +69,7 @@ SessionSummary GenerateSession(const GeneratorConfig& config, const Scene& scene
   calibration.camera = config.camera.Intrinsics();
   calibration.depth_scale = 1000.0;
   TumSessionWriter writer(folder, calibration);
-  SessionSummary summary;
+  GeneratedSessionSummary summary;
   summary.name = spec.name;
   summary.clock_time = spec.clock_time;
   const double start = SessionStartTimestamp(spec);

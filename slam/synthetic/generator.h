@@ -19,7 +19,7 @@ struct GenerateOptions {
   bool preview = false;     // also write previews/ (see preview.h)
 };
 
-struct SessionSummary {
+struct GeneratedSessionSummary {
   std::string name;
   std::string clock_time;
   int frames = 0;
@@ -32,7 +32,7 @@ struct SessionSummary {
 };
 
 struct GenerateSummary {
-  std::vector<SessionSummary> sessions;
+  std::vector<GeneratedSessionSummary> sessions;
   double wall_s = 0.0;
   std::string output_path;
 };

@@ -13,14 +13,14 @@ namespace duskmap {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr int kThumbWidth = 240;
+constexpr int kThumbWidth = 160;
 
 cv::Mat Thumbnail(const cv::Mat& image, const std::string& label) {
   cv::Mat thumb;
   const int height = kThumbWidth * image.rows / image.cols;
   cv::resize(image, thumb, cv::Size(kThumbWidth, height), 0, 0, cv::INTER_AREA);
-  cv::rectangle(thumb, cv::Rect(0, 0, 120, 20), cv::Scalar(0, 0, 0), cv::FILLED);
-  cv::putText(thumb, label, cv::Point(4, 15), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+  cv::rectangle(thumb, cv::Rect(0, 0, 96, 16), cv::Scalar(0, 0, 0), cv::FILLED);
+  cv::putText(thumb, label, cv::Point(3, 12), cv::FONT_HERSHEY_SIMPLEX, 0.38, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
   return thumb;
 }
 

@@ -1,0 +1,63 @@
+// Rendering throughput of the synthetic apartment at 640x480 once a session's
+// lighting is prepared (target: >= 20 frames/s on one core), the cost of the
+// lighting preparation, and the full frame path (render + camera + depth).
+#include <benchmark/benchmark.h>
+
+#include "slam/synthetic/apartment.h"
+#include "slam/synthetic/generator_config.h"
+#include "slam/synthetic/route.h"
+#include "slam/synthetic/session_simulator.h"
+
+namespace duskmap {
+namespace {
+
+struct Fixture {
+  GeneratorConfig config;
+  Scene scene = BuildApartment(ApartmentOptions());
+  std::vector<TimedPose> route = GenerateRoute(RouteOptions(), ApartmentPatrolRoute(), 1);
+};
+
+Fixture& Shared() {
+  static Fixture fixture;
+  return fixture;
+}
+
+void BM_RenderFrame640x480(benchmark::State& state) {
+  Fixture& f = Shared();
+  SessionSimulator simulator(f.config, f.scene, 17.0, 1);
+  RenderedView view;
+  size_t k = 0;
+  for (auto _ : state) {
+    simulator.renderer().Render(simulator.radiance(), f.route[k++ % f.route.size()].world_from_camera, &view);
+    benchmark::DoNotOptimize(view.radiance.data);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_RenderFrame640x480)->Unit(benchmark::kMillisecond);
+
+void BM_CaptureFrame640x480(benchmark::State& state) {
+  Fixture& f = Shared();
+  SessionSimulator simulator(f.config, f.scene, 19.7, 2);
+  size_t k = 0;
+  for (auto _ : state) {
+    RgbdFrame frame = simulator.Capture(f.route[k++ % f.route.size()].world_from_camera);
+    benchmark::DoNotOptimize(frame.bgr.data);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_CaptureFrame640x480)->Unit(benchmark::kMillisecond);
+
+void BM_PrepareLighting(benchmark::State& state) {
+  Fixture& f = Shared();
+  for (auto _ : state) {
+    const SessionLighting lighting = ComputeSessionLighting(f.config.lighting, f.scene, 16.8);
+    std::vector<cv::Mat> radiance = PrepareRadiance(f.scene, lighting, f.config.lighting);
+    benchmark::DoNotOptimize(radiance.data());
+  }
+}
+BENCHMARK(BM_PrepareLighting)->Unit(benchmark::kMillisecond)->Iterations(2);
+
+}  // namespace
+}  // namespace duskmap
+
+BENCHMARK_MAIN();

@@ -1,0 +1,118 @@
+// End-to-end tests of `duskmap generate` and `duskmap dataset-stats`: exit
+// codes and one-line errors naming the file and the problem.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace {
+namespace fs = std::filesystem;
+
+struct Result {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr
+};
+
+Result RunDuskmap(const std::string& args) {
+  const std::string command = std::string(DUSKMAP_EXE) + " " + args + " 2>&1";
+  Result result;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  std::array<char, 4096> buffer;
+  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) result.output += buffer.data();
+  const int status = ::pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+fs::path TempRoot(const std::string& name) {
+  const fs::path root = fs::temp_directory_path() / ("duskmap_cli_synth_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  fs::create_directories(root);
+  return root;
+}
+
+// A tiny config: 2 sessions of 3 frames at 160x120.
+std::string SmallConfig(const fs::path& root, const std::string& extra = "") {
+  const std::string path = (root / "small.json").string();
+  std::ofstream(path) << R"({"max_frames": 3, )" << extra
+                      << R"("camera": {"width": 160, "height": 120, "fx": 131.25, "fy": 131.25},
+    "lighting": {"light_texel_m": 0.25},
+    "sessions": [{"name": "1", "clock_time": "16:46"}, {"name": "F", "clock_time": "19:42", "role": "localization"}]})";
+  return path;
+}
+
+int CountLines(const std::string& s) {
+  int n = 0;
+  for (char c : s) n += c == '\n';
+  return n;
+}
+
+TEST(GenerateCli, GeneratesThenRefusesToOverwrite) {
+  const fs::path root = TempRoot("overwrite");
+  const std::string out = (root / "data").string();
+  const Result first = RunDuskmap("generate --config " + SmallConfig(root) + " --output " + out);
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  EXPECT_TRUE(fs::exists(out + "/manifest.json"));
+  const Result second = RunDuskmap("generate --config " + SmallConfig(root) + " --output " + out);
+  EXPECT_EQ(second.exit_code, 1);
+  EXPECT_EQ(CountLines(second.output), 1) << second.output;
+  EXPECT_NE(second.output.find("duskmap: error: " + out + ": already exists"), std::string::npos) << second.output;
+  const Result third = RunDuskmap("generate --config " + SmallConfig(root) + " --output " + out + " --overwrite");
+  EXPECT_EQ(third.exit_code, 0) << third.output;
+}
+
+TEST(GenerateCli, UnknownConfigKeyIsNamed) {
+  const fs::path root = TempRoot("unknown_key");
+  const Result r = RunDuskmap("generate --config " + SmallConfig(root, R"("sead": 3, )") + " --output " + (root / "data").string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(CountLines(r.output), 1) << r.output;
+  EXPECT_NE(r.output.find("unknown key 'sead'"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("small.json"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(root / "data"));
+}
+
+TEST(GenerateCli, MalformedConfigNamesTheFile) {
+  const fs::path root = TempRoot("malformed");
+  const std::string path = (root / "broken.json").string();
+  std::ofstream(path) << "{\"seed\": ";
+  const Result r = RunDuskmap("generate --config " + path + " --output " + (root / "data").string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(CountLines(r.output), 1) << r.output;
+  EXPECT_NE(r.output.find(path + ": invalid JSON"), std::string::npos) << r.output;
+}
+
+TEST(GenerateCli, UnwritableOutputFolderFails) {
+  const fs::path root = TempRoot("unwritable");
+  std::ofstream((root / "a_file").string()) << "x";
+  const std::string out = (root / "a_file" / "data").string();  // parent is a file
+  const Result r = RunDuskmap("generate --config " + SmallConfig(root) + " --output " + out);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(CountLines(r.output), 1) << r.output;
+  EXPECT_NE(r.output.find("a_file"), std::string::npos) << r.output;
+}
+
+TEST(DatasetStatsCli, PrintsTheMatricesAndRejectsATruncatedSequence) {
+  const fs::path root = TempRoot("stats");
+  const std::string out = (root / "data").string();
+  ASSERT_EQ(RunDuskmap("generate --config " + SmallConfig(root) + " --output " + out).exit_code, 0);
+  const Result ok = RunDuskmap("dataset-stats --dataset " + out + " --frame-step 1 --max-features 300");
+  ASSERT_EQ(ok.exit_code, 0) << ok.output;
+  EXPECT_NE(ok.output.find("SIFT median inlier ratio"), std::string::npos);
+  EXPECT_NE(ok.output.find("ORB median inlier ratio"), std::string::npos);
+  // Truncate the sequence: remove one listed image.
+  fs::path victim;
+  for (const auto& entry : fs::directory_iterator(out + "/F/rgb")) victim = entry.path();
+  fs::remove(victim);
+  const Result bad = RunDuskmap("dataset-stats --dataset " + out);
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_EQ(CountLines(bad.output), 1) << bad.output;
+  EXPECT_NE(bad.output.find(victim.filename().string()), std::string::npos) << bad.output;
+}
+
+}  // namespace
