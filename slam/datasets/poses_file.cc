@@ -30,7 +30,7 @@ bool ParseInt64(const std::string& token, int64_t* value) {
 }
 
 // Parses one non-comment line; returns an empty string or the problem.
-std::string ParseLine(const std::string& text, StampedPose* pose) {
+std::string ParseLine(const std::string& text, PoseLine* pose) {
   std::istringstream stream(text);
   std::vector<std::string> tokens;
   for (std::string token; stream >> token;) tokens.push_back(token);
@@ -67,7 +67,7 @@ PosesFile ParsePosesText(const std::string& text) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     const size_t first = line.find_first_not_of(" \t");
     if (first == std::string::npos || line[first] == '#') continue;
-    StampedPose pose;
+    PoseLine pose;
     pose.line = number;
     std::string problem = ParseLine(line, &pose);
     if (problem.empty() && !file.poses.empty() && !(pose.stamp_s > file.poses.back().stamp_s)) {

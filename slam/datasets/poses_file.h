@@ -12,7 +12,7 @@
 
 namespace duskmap {
 
-struct StampedPose {
+struct PoseLine {
   int line = 0;            // 1-based line number in the file
   double stamp_s = 0.0;    // seconds
   std::string stamp_text;  // the stamp token as written (matches image file stems)
@@ -27,7 +27,7 @@ struct BadPoseLine {
 };
 
 struct PosesFile {
-  std::vector<StampedPose> poses;      // usable lines, in file order
+  std::vector<PoseLine> poses;      // usable lines, in file order
   std::vector<BadPoseLine> bad_lines;  // malformed, non-finite, non-unit quaternion,
                                        // timestamp not after the previous usable line
 };

@@ -74,30 +74,30 @@ std::vector<fs::path> SortedEntries(const fs::path& folder) {
 }
 
 // Pose lines by the text that names their image: the stamp and the id.
-std::map<std::string, StampedPose> IndexPoses(const std::string& path,
+std::map<std::string, PoseLine> IndexPoses(const std::string& path,
                                               const DatasetReadOptions& options) {
-  std::map<std::string, StampedPose> index;
+  std::map<std::string, PoseLine> index;
   if (!fs::exists(path)) return index;
   const PosesFile file = ReadPosesFile(path);
   for (const BadPoseLine& bad : file.bad_lines) {
     ReportBadFrame(options, path + ":" + std::to_string(bad.line) + ": " + bad.problem);
   }
-  for (const StampedPose& pose : file.poses) {
+  for (const PoseLine& pose : file.poses) {
     index[pose.stamp_text] = pose;
     if (pose.id >= 0) index.emplace(std::to_string(pose.id), pose);
   }
   return index;
 }
 
-const StampedPose* FindPose(const std::map<std::string, StampedPose>& index,
+const PoseLine* FindPose(const std::map<std::string, PoseLine>& index,
                             const std::string& stem) {
   const auto it = index.find(stem);
   return it == index.end() ? nullptr : &it->second;
 }
 
 // Cross-checks camera_poses against device pose * local_transform.
-std::string CheckCameraPose(const ImageSessionLayout& layout, const StampedPose& device,
-                            const StampedPose& camera, const std::string& stem) {
+std::string CheckCameraPose(const ImageSessionLayout& layout, const PoseLine& device,
+                            const PoseLine& camera, const std::string& stem) {
   const Rigid3d body_from_camera =
       ReadCalibrationYaml((fs::path(layout.calib_dir) / (stem + ".yaml")).string()).body_from_camera;
   const Rigid3d expected = device.map_from_frame * body_from_camera;
@@ -113,10 +113,10 @@ std::string CheckCameraPose(const ImageSessionLayout& layout, const StampedPose&
 
 // Resolves one colour image into a frame; returns the problem or "".
 std::string ResolveFrame(const ImageSessionLayout& layout,
-                         const std::map<std::string, StampedPose>& device,
-                         const std::map<std::string, StampedPose>& camera, ImageFrame* frame) {
-  const StampedPose* device_pose = FindPose(device, frame->stem);
-  const StampedPose* camera_pose = FindPose(camera, frame->stem);
+                         const std::map<std::string, PoseLine>& device,
+                         const std::map<std::string, PoseLine>& camera, ImageFrame* frame) {
+  const PoseLine* device_pose = FindPose(device, frame->stem);
+  const PoseLine* camera_pose = FindPose(camera, frame->stem);
   const std::string pose_file = device_pose || fs::exists(layout.device_poses)
                                     ? layout.device_poses : layout.camera_poses;
   if (!device_pose && (fs::exists(layout.device_poses) || !camera_pose)) {
