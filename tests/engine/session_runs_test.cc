@@ -86,12 +86,11 @@ std::string FileBytes(const std::string& path) {
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-// DISABLED: measured on the 30-frame 320x240 sessions with the paper's
-// settings (2026-11-22): 19/30 frames re-localized (63%), 9 rejected by
-// registration with too few matches, and 6 re-localizations wrong by
-// 0.2-0.5 m / 5-9 deg at the matched node (75 inliers for the worst), i.e. the
-// transform estimation itself, not the map's drift. Re-enable once that is
-// understood (see docs/engine.md, "Not done yet").
+// DISABLED: the issue asks for >= 90 %; measured 2026-11-22 on these 25-frame
+// 640x480 sessions: 17/25 (68 %) re-localized, 0 wrong; the 8 misses are LCD
+// hypotheses whose transform was rejected (5 too few inliers, 3 too few
+// matches). The six-session map re-localizes 87.5 % of 40 frames of A
+// (bench/engine_bench). Re-enable when registration/LCD tuning reaches 90 %.
 TEST_F(EngineSessions, DISABLED_SameLightSessionRelocalizes) {
   const MappingRun& map1 = MapOf("1", {"1"}, false);
   const LocalizationRun run = Localize(map1.map, "A");
@@ -102,9 +101,7 @@ TEST_F(EngineSessions, DISABLED_SameLightSessionRelocalizes) {
   ExpectNoWrong(run, "map 1, session A");
 }
 
-// DISABLED for the same wrong re-localizations as above (1 with the day map,
-// 3 with the day+night map on session F).
-TEST_F(EngineSessions, DISABLED_NightSessionNeedsANightMap) {
+TEST_F(EngineSessions, NightSessionNeedsANightMap) {
   const LocalizationRun day_only = Localize(MapOf("1", {"1"}, false).map, "F");
   const LocalizationRun day_night = Localize(MapOf("1+6", {"1", "6"}, false).map, "F");
   ExpectNoWrong(day_only, "map 1, session F");
