@@ -21,7 +21,7 @@ struct Result {
   std::string output;  // stdout and stderr
 };
 
-Result Run(const std::string& args) {
+Result RunDuskmap(const std::string& args) {
   Result result;
   FILE* pipe = ::popen((std::string(DUSKMAP_EXE) + " " + args + " 2>&1").c_str(), "r");
   if (!pipe) return result;
@@ -39,17 +39,13 @@ class EngineCli : public ::testing::Test {
     fs::create_directories(dir_);
     nlohmann::json config = nlohmann::json::parse(
         std::ifstream(std::string(DUSKMAP_SOURCE_DIR) + "/configs/sunset_apartment.json"));
-    config["max_frames"] = 12;
-    config["camera"]["width"] = 320;
-    config["camera"]["height"] = 240;
-    config["camera"]["fx"] = 262.5;
-    config["camera"]["fy"] = 262.5;
+    config["max_frames"] = 8;
     config["sessions"] = nlohmann::json::array(
         {{{"name", "1"}, {"clock_time", "16:46"}, {"role", "mapping"}},
          {{"name", "A"}, {"clock_time", "16:51"}, {"role", "localization"}}});
     std::ofstream(dir_ + "/gen.json") << config.dump();
     const Result generated =
-        Run("generate --config " + dir_ + "/gen.json --output " + dir_ + "/data");
+        RunDuskmap("generate --config " + dir_ + "/gen.json --output " + dir_ + "/data");
     ASSERT_EQ(generated.exit_code, 0) << generated.output;
   }
   static void TearDownTestSuite() { fs::remove_all(dir_); }
@@ -59,19 +55,21 @@ class EngineCli : public ::testing::Test {
 std::string EngineCli::dir_;
 
 TEST_F(EngineCli, MapThenLocalizeWritesOutputs) {
-  const Result map = Run("map --dataset " + dir_ + "/data --sessions 1 --output " + dir_ +
-                         "/map.db --summary " + dir_ + "/map.json --frames " + dir_ + "/map.csv");
+  const Result map =
+      RunDuskmap("map --dataset " + dir_ + "/data --format synthetic --sessions 1 --output " +
+                 dir_ + "/map.db --summary " + dir_ + "/map.json --frames " + dir_ + "/map.csv");
   ASSERT_EQ(map.exit_code, 0) << map.output;
   const auto map_summary = nlohmann::json::parse(std::ifstream(dir_ + "/map.json"));
-  EXPECT_EQ(map_summary["nodes_per_session"][0], 12);
+  EXPECT_EQ(map_summary["nodes_per_session"][0], 8);
   EXPECT_GT(map_summary["memory_bytes"]["descriptors"].get<double>(), 0.0);
 
   const Result localize =
-      Run("localize --map " + dir_ + "/map.db --dataset " + dir_ + "/data --session A --records " +
-          dir_ + "/a.jsonl --trajectory " + dir_ + "/a.tum --summary " + dir_ + "/a.json");
+      RunDuskmap("localize --map " + dir_ + "/map.db --dataset " + dir_ +
+                 "/data --format synthetic --session A --records " + dir_ +
+                 "/a.jsonl --trajectory " + dir_ + "/a.tum --summary " + dir_ + "/a.json");
   ASSERT_EQ(localize.exit_code, 0) << localize.output;
   const auto summary = nlohmann::json::parse(std::ifstream(dir_ + "/a.json"));
-  EXPECT_EQ(summary["frames"], 12);
+  EXPECT_EQ(summary["frames"], 8);
   EXPECT_TRUE(summary["evaluated"].get<bool>());
   EXPECT_EQ(summary["wrong"], 0);
   std::ifstream records(dir_ + "/a.jsonl");
@@ -79,14 +77,14 @@ TEST_F(EngineCli, MapThenLocalizeWritesOutputs) {
   for (std::string line; std::getline(records, line); ++lines) {
     EXPECT_TRUE(nlohmann::json::parse(line).contains("outcome"));
   }
-  EXPECT_EQ(lines, 12);
+  EXPECT_EQ(lines, 8);
   EXPECT_TRUE(fs::exists(dir_ + "/a.tum"));
 }
 
 TEST_F(EngineCli, BadMapFileIsOneLineError) {
   std::ofstream(dir_ + "/bad.db") << "not a map";
-  const Result r = Run("localize --map " + dir_ + "/bad.db --dataset " + dir_ +
-                       "/data --session A");
+  const Result r = RunDuskmap("localize --map " + dir_ + "/bad.db --dataset " + dir_ +
+                       "/data --format synthetic --session A");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.output.rfind("duskmap: error: ", 0), 0u) << r.output;
   EXPECT_NE(r.output.find("not a duskmap map"), std::string::npos) << r.output;
