@@ -56,7 +56,8 @@ nlohmann::json SummaryToJson(const LocalizationRun& run) {
                       {"max_gap_m", run.summary.gaps.max_gap_m},
                       {"within_55cm_pct", run.summary.gaps.within_pct},
                       {"wall_s", run.wall_s},
-                      {"peak_rss_bytes", PeakResidentBytes()}};
+                      {"peak_rss_bytes", PeakResidentBytes()},
+                      {"memory_bytes", MapMemoryToJson(run.memory)}};
   for (const auto& [stage, t] : run.timings) {
     j["timings"][stage] = {{"median_ms", t.median_ms}, {"mean_ms", t.mean_ms}, {"max_ms", t.max_ms}};
   }

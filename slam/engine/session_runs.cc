@@ -31,21 +31,23 @@ MapSummary SummarizeMap(const Map& map) {
   return s;
 }
 
+nlohmann::json MapMemoryToJson(const MapMemory& m) {
+  return {{"descriptors", m.descriptors_bytes},
+          {"keypoints_points", m.keypoints_points_bytes},
+          {"words_index", m.words_index_bytes},
+          {"graph", m.graph_bytes},
+          {"filter", m.filter_bytes},
+          {"total", m.total_bytes()},
+          {"per_node", m.bytes_per_node()}};
+}
+
 nlohmann::json MapSummaryToJson(const MapSummary& s) {
-  const MapMemory& m = s.memory;
   return {{"sessions", s.num_sessions},
           {"nodes_per_session", s.nodes_per_session},
           {"links_by_type", s.links_by_type},
           {"connected_session_groups", s.connected_groups},
           {"vocabulary_words", s.vocabulary_words},
-          {"memory_bytes",
-           {{"descriptors", m.descriptors_bytes},
-            {"keypoints_points", m.keypoints_points_bytes},
-            {"words_index", m.words_index_bytes},
-            {"graph", m.graph_bytes},
-            {"filter", m.filter_bytes},
-            {"total", m.total_bytes()},
-            {"per_node", m.bytes_per_node()}}}};
+          {"memory_bytes", MapMemoryToJson(s.memory)}};
 }
 
 MappingRun BuildMap(const DatasetReader& dataset, const std::vector<std::string>& sessions,
@@ -98,6 +100,10 @@ LocalizationRun LocalizeSession(const Map& map, SessionReader& session,
     run.records.push_back(std::move(record));
   }
   run.summary = EvaluateLocalization(map, truth, positions, metrics, &run.records);
+  const LoopClosureDetector& lcd = localizer.loop_closure();
+  run.memory = ComputeMapMemory(
+      map, lcd.filter().TransitionBytes() + lcd.filter().num_places() * sizeof(double));
+  run.memory.words_index_bytes = lcd.vocabulary().MemoryBytes();
   for (auto& [stage, values] : times) run.timings[stage] = SummarizeTimes(values);
   run.wall_s = wall.ElapsedMs() / 1000.0;
   return run;

@@ -38,6 +38,7 @@ struct MapSummary {
 
 MapSummary SummarizeMap(const Map& map);
 nlohmann::json MapSummaryToJson(const MapSummary& summary);
+nlohmann::json MapMemoryToJson(const MapMemory& memory);
 
 struct MappingRun {
   Map map;
@@ -52,6 +53,10 @@ MappingRun BuildMap(const DatasetReader& dataset, const std::vector<std::string>
 
 struct LocalizationRun {
   std::vector<LocalizationRecord> records;
+  // What the map needs for localization: descriptors, keypoints + 3D points
+  // and graph from the map; words + index from the localizer's vocabulary;
+  // filter = the Bayes filter's transition columns + one posterior per place.
+  MapMemory memory;
   LocalizationSummary summary;
   std::map<std::string, StageTimingSummary> timings;  // "features", "lcd", "te", "lcd_te", ...
   double wall_s = 0.0;

@@ -72,6 +72,8 @@ TEST_F(EngineCli, MapThenLocalizeWritesOutputs) {
   EXPECT_EQ(summary["frames"], 8);
   EXPECT_TRUE(summary["evaluated"].get<bool>());
   EXPECT_EQ(summary["wrong"], 0);
+  EXPECT_GT(summary["memory_bytes"]["filter"].get<double>(), 0.0);
+  EXPECT_GT(summary["memory_bytes"]["words_index"].get<double>(), 0.0);
   std::ifstream records(dir_ + "/a.jsonl");
   int lines = 0;
   for (std::string line; std::getline(records, line); ++lines) {
