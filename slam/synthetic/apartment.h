@@ -19,7 +19,7 @@ struct ApartmentOptions {
   uint64_t seed = 7;           // texture seed
   std::string textures_dir;    // optional folder of images for pictures/posters
   double wall_height_m = 2.5;  // floor to ceiling
-  double lamp_intensity_scale = 1.0;  // multiplies every lamp's candela
+  double lamp_intensity_scale = 1.6;  // multiplies every lamp's candela (tuned for realism)
   std::string living_lamp_on_from = "17:54";  // clock time the living-room floor lamp goes on
 
   void Check() const;

@@ -27,7 +27,7 @@ struct CameraModelOptions {
   double sensitivity = 0.135;     // linear signal per nit-second at gain 1 (1 = white)
   double awb_speed = 0.4;         // fraction of the log white-balance error corrected per frame
   double awb_strength = 0.75;     // fraction of the grey-world correction applied
-  double photons_at_white = 4000; // shot noise: photo-electrons at full scale, gain 1
+  double photons_at_white = 8000; // shot noise: photo-electrons at full scale, gain 1
   double read_noise = 0.002;      // read noise std at gain 1, fraction of full scale
   double blur_sigma_px = 0.6;     // optics blur, pixels
   double gamma = 2.2;             // display gamma of the tone curve
