@@ -32,7 +32,7 @@ RunFn SetupGenerate(CLI::App& command) {
     const GenerateSummary summary = GenerateDataset(config, args->options);
     std::printf("%-4s %-6s %6s %8s %8s %8s %8s %9s %7s\n", "sess", "clock", "frames", "dist_m", "sun_deg",
                 "bright", "gain", "odo_err_m", "wall_s");
-    for (const SessionSummary& s : summary.sessions) {
+    for (const GeneratedSessionSummary& s : summary.sessions) {
       std::printf("%-4s %-6s %6d %8.1f %8.1f %8.3f %8.2f %9.3f %7.1f\n", s.name.c_str(), s.clock_time.c_str(),
                   s.frames, s.distance_m, s.sun_elevation_deg, s.mean_brightness, s.mean_gain,
                   s.odometry_final_error_m, s.wall_s);

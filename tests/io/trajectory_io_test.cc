@@ -15,14 +15,14 @@ std::string TempPath(const std::string& name) {
 }
 
 TEST(WriteTrajectory, RoundTripKeepsPoses) {
-  std::vector<StampedPose> poses;
+  std::vector<TrajectoryPose> poses;
   for (int i = 0; i < 5; ++i) {
     const Eigen::Quaterniond q(Eigen::AngleAxisd(0.3 * i, Eigen::Vector3d(0.2, 1.0, -0.4).normalized()));
     poses.push_back({100.0 + i * 0.5, Rigid3d(q, Eigen::Vector3d(i, -2.0 * i, 0.1 * i))});
   }
   const std::string path = TempPath("round_trip.txt");
   WriteTrajectory(path, poses, "test");
-  const std::vector<StampedPose> read = ReadTrajectory(path);
+  const std::vector<TrajectoryPose> read = ReadTrajectory(path);
   ASSERT_EQ(read.size(), poses.size());
   for (size_t i = 0; i < poses.size(); ++i) {
     EXPECT_NEAR(read[i].timestamp_s, poses[i].timestamp_s, 1e-6);
@@ -47,7 +47,7 @@ TEST(ReadTrajectory, MissingFileThrows) {
 }
 
 TEST(InterpolatePose, InterpolatesBetweenAndRejectsGaps) {
-  std::vector<StampedPose> poses = {{0.0, Rigid3d(Eigen::Quaterniond::Identity(), Eigen::Vector3d(0, 0, 0))},
+  std::vector<TrajectoryPose> poses = {{0.0, Rigid3d(Eigen::Quaterniond::Identity(), Eigen::Vector3d(0, 0, 0))},
                                     {1.0, Rigid3d(Eigen::Quaterniond::Identity(), Eigen::Vector3d(2, 0, 0))}};
   const auto mid = InterpolatePose(poses, 0.25, 1.0);
   ASSERT_TRUE(mid.has_value());
