@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Draws the report figures of a duskmap run from the CSV files `duskmap report` writes.
 
-Usage: plot_report.py REPORT_DIR [--jobs-dir RESULTS_DIR/jobs]
+Usage: plot_report.py REPORT_DIR [--jobs-dir RESULTS_DIR/jobs ...] [--title TEXT]
 
 Writes into REPORT_DIR/figures/:
   relocalization_single_<F>.png   single-session maps x localization sessions, per feature
@@ -9,6 +9,7 @@ Writes into REPORT_DIR/figures/:
   relocalization_over_time_<F>.png  per localization session, the mapping session matched
   consecutive.png                 consecutive-session re-localization (map session x later session)
   merged_graph_<F>.png            top view of a merged map's optimised graph over ground truth
+and REPORT_DIR/report.md, which puts the tables (tables.md) and the figures together.
 """
 import argparse
 import csv
@@ -125,20 +126,30 @@ def consecutive_matrix(rows, out_dir):
     return written
 
 
-def merged_graphs(jobs_dir, out_dir):
+def merged_graphs(jobs_dirs, out_dir):
     written = []
-    maps_dir = os.path.join(jobs_dir, "map")
-    if not os.path.isdir(maps_dir):
-        return written
-    for feature in sorted(os.listdir(maps_dir)):
-        labels = [m for m in os.listdir(os.path.join(maps_dir, feature)) if "+" in m]
-        if not labels:
+    graphs = {}  # feature -> (label, graph.csv path) of its largest merged map
+    for jobs_dir in jobs_dirs:
+        maps_dir = os.path.join(jobs_dir, "map")
+        if not os.path.isdir(maps_dir):
             continue
-        label = max(labels, key=lambda m: m.count("+"))
-        nodes = read_csv(os.path.join(maps_dir, feature, label, "graph.csv"))
+        for feature in sorted(os.listdir(maps_dir)):
+            for label in os.listdir(os.path.join(maps_dir, feature)):
+                path = os.path.join(maps_dir, feature, label, "graph.csv")
+                if "+" not in label or label.endswith(".partial") or not os.path.exists(path):
+                    continue
+                if feature not in graphs or label.count("+") > graphs[feature][0].count("+"):
+                    graphs[feature] = (label, path)
+    for feature in sorted(graphs):
+        label, path = graphs[feature]
+        nodes = read_csv(path)
         if not nodes:
             continue
         fig, ax = plt.subplots(figsize=(6, 6))
+        if "connected" in nodes[0]:
+            # Sessions not joined to the map frame's session float in their
+            # own odometry frame: drawn separately would mislead.
+            nodes = [n for n in nodes if n["connected"] == "1"]
         has_truth = all(n.get("truth_x", "") not in ("", "nan") for n in nodes)
         if has_truth:
             ax.plot([float(n["truth_x"]) for n in nodes], [float(n["truth_y"]) for n in nodes],
@@ -163,7 +174,9 @@ def merged_graphs(jobs_dir, out_dir):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("report_dir")
-    parser.add_argument("--jobs-dir", help="the run's jobs/ folder, for the merged-graph figure")
+    parser.add_argument("--jobs-dir", action="append", default=[],
+                        help="a run's jobs/ folder, for the merged-graph figure (repeatable)")
+    parser.add_argument("--title", default="", help="the experiment's name, for report.md")
     args = parser.parse_args()
     cells_path = os.path.join(args.report_dir, "cells.csv")
     if not os.path.exists(cells_path):
@@ -178,11 +191,39 @@ def main():
                                                                      "timeline.csv")), out_dir)
     written += consecutive_matrix(read_csv(os.path.join(args.report_dir, "consecutive.csv")),
                                   out_dir)
-    if args.jobs_dir:
-        written += merged_graphs(args.jobs_dir, out_dir)
+    written += merged_graphs(args.jobs_dir, out_dir)
+    write_report_md(args.report_dir, args.title, written)
     for path in written:
         print(path)
     return 0
+
+
+FIGURE_CAPTIONS = [
+    ("relocalization_single_", "Re-localization (% of frames) on single-session maps"),
+    ("relocalization_multi_", "Re-localization (% of frames) on multi-session maps"),
+    ("relocalization_over_time_", "Re-localization over time, coloured by the mapping session "
+                                  "each frame was re-localized on"),
+    ("consecutive", "Consecutive sessions: frames re-localized within 55 cm of the previous one"),
+    ("merged_graph_", "Optimised graph of the largest merged map over its ground truth (top view)"),
+]
+
+
+def write_report_md(report_dir, title, figures):
+    tables_path = os.path.join(report_dir, "tables.md")
+    tables = open(tables_path).read() if os.path.exists(tables_path) else ""
+    lines = [f"# duskmap report{': ' + title if title else ''}", "",
+             "Each cell: measured (paper). Tables as CSV in tables/, LaTeX in tables.tex.", "",
+             "## Tables", "", tables, "## Figures", ""]
+    for prefix, caption in FIGURE_CAPTIONS:
+        mine = sorted(p for p in figures if os.path.basename(p).startswith(prefix))
+        if not mine:
+            continue
+        lines += [f"### {caption}", ""]
+        for path in mine:
+            rel = os.path.relpath(path, report_dir)
+            lines += [f"![{os.path.basename(path)}]({rel})", ""]
+    with open(os.path.join(report_dir, "report.md"), "w") as f:
+        f.write("\n".join(lines))
 
 
 if __name__ == "__main__":

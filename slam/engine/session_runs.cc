@@ -50,18 +50,39 @@ nlohmann::json MapSummaryToJson(const MapSummary& s) {
           {"memory_bytes", MapMemoryToJson(s.memory)}};
 }
 
+ReaderFrameSource::ReaderFrameSource(std::unique_ptr<SessionReader> reader)
+    : reader_(std::move(reader)) {
+  SLAM_CHECK(reader_ != nullptr);
+}
+
+std::optional<RgbdFrame> ReaderFrameSource::Next(std::optional<FrameFeatures>* features) {
+  features->reset();
+  return reader_->Next();
+}
+
 MappingRun BuildMap(const DatasetReader& dataset, const std::vector<std::string>& sessions,
                     const EngineOptions& options) {
+  std::vector<std::unique_ptr<FrameSource>> sources;
+  std::vector<FrameSource*> pointers;
+  for (const std::string& name : sessions) {
+    sources.push_back(std::make_unique<ReaderFrameSource>(dataset.OpenSession(name)));
+    pointers.push_back(sources.back().get());
+  }
+  return BuildMap(pointers, options);
+}
+
+MappingRun BuildMap(const std::vector<FrameSource*>& sessions, const EngineOptions& options) {
   SLAM_THROW_IF_NOT(InputError, !sessions.empty()) << "BuildMap: no session to map";
   Stopwatch wall;
   Mapper mapper(options);
   MappingRun run;
   std::map<std::string, std::vector<double>> times;
-  for (const std::string& name : sessions) {
-    std::unique_ptr<SessionReader> reader = dataset.OpenSession(name);
-    mapper.StartSession(name, reader->info().clock_time);
-    while (std::optional<RgbdFrame> frame = reader->Next()) {
-      MappingFrameResult result = mapper.ProcessFrame(*frame);
+  std::optional<FrameFeatures> features;
+  for (FrameSource* source : sessions) {
+    mapper.StartSession(source->info().name, source->info().clock_time);
+    while (std::optional<RgbdFrame> frame = source->Next(&features)) {
+      MappingFrameResult result = features ? mapper.ProcessFrame(*frame, std::move(*features))
+                                           : mapper.ProcessFrame(*frame);
       times["features"].push_back(result.timings.features_ms);
       times["lcd"].push_back(result.timings.lcd_ms);
       times["proximity"].push_back(result.timings.proximity_ms);
@@ -72,12 +93,42 @@ MappingRun BuildMap(const DatasetReader& dataset, const std::vector<std::string>
     }
   }
   run.map = mapper.Finish();
+  const LoopClosureDetector& lcd = mapper.loop_closure();
+  run.memory = ComputeMapMemory(
+      run.map, lcd.filter().TransitionBytes() + lcd.filter().num_places() * sizeof(double));
+  run.memory.words_index_bytes = lcd.vocabulary().MemoryBytes();
   for (auto& [stage, values] : times) run.timings[stage] = SummarizeTimes(values);
   run.wall_s = wall.ElapsedMs() / 1000.0;
   return run;
 }
 
+namespace {
+
+// Borrows a SessionReader as a FrameSource (frames with images).
+class BorrowedReaderSource : public FrameSource {
+ public:
+  explicit BorrowedReaderSource(SessionReader& reader) : reader_(reader) {}
+  const SessionInfo& info() const override { return reader_.info(); }
+  std::optional<RgbdFrame> Next(std::optional<FrameFeatures>* features) override {
+    features->reset();
+    return reader_.Next();
+  }
+
+ private:
+  SessionReader& reader_;
+};
+
+}  // namespace
+
 LocalizationRun LocalizeSession(const Map& map, SessionReader& session,
+                                const EngineOptions& options,
+                                const RelocalizationMetricsOptions& metrics) {
+  session.Rewind();
+  BorrowedReaderSource source(session);
+  return LocalizeSession(map, source, options, metrics);
+}
+
+LocalizationRun LocalizeSession(const Map& map, FrameSource& session,
                                 const EngineOptions& options,
                                 const RelocalizationMetricsOptions& metrics) {
   Stopwatch wall;
@@ -86,9 +137,10 @@ LocalizationRun LocalizeSession(const Map& map, SessionReader& session,
   std::vector<std::optional<Rigid3d>> truth;
   std::vector<Eigen::Vector3d> positions;
   std::map<std::string, std::vector<double>> times;
-  session.Rewind();
-  while (std::optional<RgbdFrame> frame = session.Next()) {
-    LocalizationRecord record = localizer.ProcessFrame(*frame);
+  std::optional<FrameFeatures> features;
+  while (std::optional<RgbdFrame> frame = session.Next(&features)) {
+    LocalizationRecord record = features ? localizer.ProcessFrame(*frame, *features)
+                                         : localizer.ProcessFrame(*frame);
     truth.push_back(frame->world_from_camera);
     positions.push_back(frame->odom_from_camera().translation);
     times["features"].push_back(record.timings.features_ms);

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <map>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,8 +42,35 @@ MapSummary SummarizeMap(const Map& map);
 nlohmann::json MapSummaryToJson(const MapSummary& summary);
 nlohmann::json MapMemoryToJson(const MapMemory& memory);
 
+// One session's frames as the engine drivers consume them. A source either
+// hands out frames with their images (the engine extracts the features) or
+// frames whose features were extracted earlier (cached, images left empty).
+class FrameSource {
+ public:
+  virtual ~FrameSource() = default;
+  virtual const SessionInfo& info() const = 0;
+  // The next frame, or nullopt at the end. When the source has the frame's
+  // features it stores them in `*features`, otherwise it resets it.
+  virtual std::optional<RgbdFrame> Next(std::optional<FrameFeatures>* features) = 0;
+};
+
+// A FrameSource over a dataset session: frames with images, no features.
+class ReaderFrameSource : public FrameSource {
+ public:
+  explicit ReaderFrameSource(std::unique_ptr<SessionReader> reader);
+  const SessionInfo& info() const override { return reader_->info(); }
+  std::optional<RgbdFrame> Next(std::optional<FrameFeatures>* features) override;
+
+ private:
+  std::unique_ptr<SessionReader> reader_;
+};
+
 struct MappingRun {
   Map map;
+  // What the finished map needs for localization, as LocalizationRun::memory,
+  // with the mapper's vocabulary and Bayes filter standing in for the
+  // localizer's (both hold the map's words and places).
+  MapMemory memory;
   std::vector<MappingFrameResult> frames;
   std::map<std::string, StageTimingSummary> timings;  // "features", "lcd", ...
   double wall_s = 0.0;
@@ -50,6 +79,8 @@ struct MappingRun {
 // Replays `sessions` of `dataset` (in order) into one map.
 MappingRun BuildMap(const DatasetReader& dataset, const std::vector<std::string>& sessions,
                     const EngineOptions& options);
+// Replays the sources (in order, each its own session) into one map.
+MappingRun BuildMap(const std::vector<FrameSource*>& sessions, const EngineOptions& options);
 
 struct LocalizationRun {
   std::vector<LocalizationRecord> records;
@@ -65,6 +96,10 @@ struct LocalizationRun {
 // Localizes every frame of `session` against `map` (read-only) and evaluates
 // the re-localizations where the frames have ground truth.
 LocalizationRun LocalizeSession(const Map& map, SessionReader& session,
+                                const EngineOptions& options,
+                                const RelocalizationMetricsOptions& metrics = {});
+// The same over a frame source read from its current position to its end.
+LocalizationRun LocalizeSession(const Map& map, FrameSource& session,
                                 const EngineOptions& options,
                                 const RelocalizationMetricsOptions& metrics = {});
 

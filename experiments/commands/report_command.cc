@@ -1,0 +1,55 @@
+// `duskmap report`: merges the results folders of one or more runs (the
+// shards of a matrix) into the paper's tables, figure data, figures and
+// report.md.
+#include <iostream>
+#include <memory>
+
+#include "experiments/command_registry.h"
+#include "experiments/report_output.h"
+
+namespace duskmap::cli {
+namespace {
+
+struct ReportArgs {
+  std::string config;
+  std::vector<std::string> results;
+  std::string output;
+  std::string paper;
+  bool figures = true;
+  bool allow_missing = false;
+};
+
+RunFn SetupReport(CLI::App& command) {
+  auto args = std::make_shared<ReportArgs>();
+  command.add_option("config", args->config, "the experiment config the runs used")->required();
+  command.add_option("--results", args->results, "results folders of `duskmap run` (shards)")
+      ->required();
+  command.add_option("--output", args->output, "report folder")->required();
+  command.add_option("--paper", args->paper,
+                     "the paper's numbers (default: configs/paper_results.json)");
+  command.add_flag("!--no-figures", args->figures, "write the tables only");
+  command.add_flag("--allow-missing", args->allow_missing,
+                   "exit 0 even when some jobs have no results");
+  return [args] {
+    ReportRequest request;
+    request.config_path = args->config;
+    for (const std::string& dir : args->results) request.results_dirs.emplace_back(dir);
+    request.output_dir = args->output;
+    request.paper_results = args->paper;
+    request.figures = args->figures;
+    const int missing = WriteExperimentReport(request);
+    if (missing > 0 && !args->allow_missing) {
+      std::cerr << "duskmap: error: " << missing
+                << " jobs have no results in the given folders (a shard missing or unfinished; "
+                   "--allow-missing writes the partial report)\n";
+      return 1;
+    }
+    return 0;
+  };
+}
+
+const bool kRegistered = RegisterCommand(
+    {"report", "Merge run results (shards) into the paper's tables and figures", &SetupReport});
+
+}  // namespace
+}  // namespace duskmap::cli

@@ -1,0 +1,210 @@
+// `duskmap run`: runs an experiment matrix (feature extraction per session,
+// map building, localization of every session on every map, consecutive
+// sessions) with cached features, parallel jobs, resume and shards, then
+// writes the report (unsharded runs; shards are merged by `duskmap report`).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <thread>
+
+#include <opencv2/core.hpp>
+
+#include "experiments/command_registry.h"
+#include "experiments/report_output.h"
+#include "slam/core/check.h"
+#include "slam/datasets/dataset_factory.h"
+#include "slam/engine/engine_options.h"
+#include "slam/experiment/engine_executor.h"
+#include "slam/experiment/job_runner.h"
+#include "slam/experiment/run_manifest.h"
+
+namespace duskmap::cli {
+namespace fs = std::filesystem;
+namespace {
+
+struct RunArgs {
+  std::string config;
+  std::string output;
+  int jobs = 0;  // 0 = one per hardware thread
+  bool resume = false;
+  bool overwrite = false;
+  std::string shard = "0/1";
+  bool report = true;
+  bool figures = true;
+};
+
+std::pair<int, int> ParseShard(const std::string& text) {
+  int index = -1;
+  int count = -1;
+  char slash = 0;
+  std::istringstream in(text);
+  in >> index >> slash >> count;
+  SLAM_THROW_IF_NOT(ConfigError, in && in.peek() == EOF && slash == '/' && count >= 1 &&
+                                     index >= 0 && index < count)
+      << "--shard " << text << ": expected i/n with 0 <= i < n";
+  return {index, count};
+}
+
+std::string FormatDuration(double seconds) {
+  const long s = std::lround(std::max(0.0, seconds));
+  std::ostringstream out;
+  out << s / 3600 << ":" << std::setw(2) << std::setfill('0') << (s / 60) % 60 << ":"
+      << std::setw(2) << std::setfill('0') << s % 60;
+  return out.str();
+}
+
+// Frames each job processes, for the frames/s and ETA of the progress line.
+std::map<std::string, int64_t> FramesPerJob(const ExperimentPlan& plan,
+                                            const ExperimentOptions& options,
+                                            const std::vector<SessionInfo>& sessions) {
+  std::map<std::string, int64_t> session_frames;
+  for (const SessionInfo& s : sessions) {
+    int64_t n = (s.num_frames + options.frame_step - 1) / options.frame_step;
+    if (options.max_frames_per_session > 0) n = std::min<int64_t>(n, options.max_frames_per_session);
+    session_frames[s.name] = n;
+  }
+  std::map<std::string, int64_t> frames;
+  for (const Job& job : plan.jobs) {
+    int64_t n = 0;
+    if (job.kind == JobKind::kBuildMap) {
+      for (const std::string& s : job.map.sessions) n += session_frames[s];
+    } else {
+      n = session_frames[job.session];
+    }
+    frames[job.id] = n;
+  }
+  return frames;
+}
+
+void CheckOutputFolder(const fs::path& output, const RunArgs& args, const RunManifest& manifest) {
+  if (!fs::exists(output / "run.json")) return;
+  SLAM_THROW_IF_NOT(ConfigError, args.resume || args.overwrite)
+      << output.string()
+      << ": holds an earlier run; pass --resume to continue it or --overwrite to redo every job";
+  if (!args.resume) return;
+  const RunManifest earlier = ReadRunManifest(output);
+  SLAM_THROW_IF_NOT(ConfigError, earlier.features == manifest.features &&
+                                     earlier.session_clock == manifest.session_clock &&
+                                     earlier.shard_index == manifest.shard_index &&
+                                     earlier.shard_count == manifest.shard_count)
+      << (output / "run.json").string()
+      << ": an earlier run with other features, sessions or shard; cannot resume it";
+}
+
+RunFn SetupRun(CLI::App& command) {
+  auto args = std::make_shared<RunArgs>();
+  command.add_option("config", args->config, "experiment config (configs/*.json)")->required();
+  command.add_option("--output", args->output,
+                     "results folder (default: out/<config name without .json>)");
+  command.add_option("--jobs", args->jobs, "jobs run at once (default: one per CPU)");
+  command.add_flag("--resume", args->resume, "continue an interrupted run, keeping finished jobs");
+  command.add_flag("--overwrite", args->overwrite, "redo every job of an earlier run");
+  command.add_option("--shard", args->shard,
+                     "run shard i of n (i/n, 0-based); merge shards with `duskmap report`");
+  command.add_flag("!--no-report", args->report, "do not write the report after the run");
+  command.add_flag("!--no-figures", args->figures, "write the report's tables only");
+  return [args] {
+    const ExperimentOptions options = ReadExperimentOptions(args->config);
+    const EngineOptions engine = options.engine_config.empty()
+                                     ? EngineOptions()
+                                     : ReadEngineOptionsFile(options.engine_config);
+    const auto [shard_index, shard_count] = ParseShard(args->shard);
+    const fs::path output =
+        args->output.empty() ? fs::path("out") / fs::path(args->config).stem() : fs::path(args->output);
+    SLAM_THROW_IF_NOT(ConfigError, args->jobs >= 0) << "--jobs: must be >= 0";
+    const int jobs = args->jobs > 0 ? args->jobs
+                                    : std::max(1u, std::thread::hardware_concurrency());
+
+    const auto dataset = OpenDataset(options.dataset_path, options.dataset_format);
+    const std::vector<SessionInfo> sessions = dataset->Sessions();
+    RunManifest manifest;
+    manifest.config_path = args->config;
+    manifest.dataset_path = options.dataset_path;
+    manifest.session_clock = SessionClockOf(sessions);
+    manifest.shard_index = shard_index;
+    manifest.shard_count = shard_count;
+    SelectRunnableFeatures(options, engine.features.superpoint.model_path, &manifest);
+    for (const SkippedFeature& skipped : manifest.skipped_features) {
+      std::cout << "note: feature " << skipped.label << " skipped: " << skipped.reason << "\n";
+    }
+    SLAM_THROW_IF_NOT(ConfigError, !manifest.features.empty())
+        << args->config << ": every feature type was skipped";
+    const ExperimentPlan full_plan = PlanFromManifest(options, manifest);
+    const ExperimentPlan plan = SelectShard(full_plan, shard_index, shard_count);
+    CheckOutputFolder(output, *args, manifest);
+    WriteRunManifest(manifest, output);
+
+    // Parallelism comes from jobs; single-threaded OpenCV keeps per-frame
+    // timings comparable with the paper's and the run deterministic.
+    cv::setNumThreads(1);
+    const std::map<std::string, int64_t> frames = FramesPerJob(plan, options, sessions);
+    int64_t total_frames = 0;
+    for (const auto& [id, n] : frames) total_frames += n;
+    std::cout << "duskmap run: " << plan.jobs.size() << " jobs (" << total_frames
+              << " frame passes), " << jobs << " at once, results in " << output.string()
+              << (shard_count > 1 ? ", shard " + args->shard : std::string()) << "\n"
+              << std::flush;
+
+    const bool terminal = StdoutIsTerminal();
+    int64_t frames_done = 0;
+    const auto on_progress = [&](const JobRunProgress& p) {
+      const auto it = frames.find(p.last_job_id);
+      if (it != frames.end()) frames_done += it->second;
+      const double rate = p.elapsed_s > 0 ? frames_done / p.elapsed_s : 0.0;
+      const double eta =
+          frames_done > 0 ? p.elapsed_s * (total_frames - frames_done) / frames_done : 0.0;
+      std::ostringstream line;
+      line << "[" << p.finished << "/" << p.total << " jobs" << (p.failed ? ", " : "")
+           << (p.failed ? std::to_string(p.failed) + " failed" : "") << "] " << std::fixed
+           << std::setprecision(1) << rate << " frames/s, elapsed " << FormatDuration(p.elapsed_s)
+           << ", ETA " << FormatDuration(eta) << "  " << p.last_job_id;
+      if (terminal) {
+        std::cout << "\r\033[K" << line.str() << std::flush;
+      } else {
+        std::cout << line.str() << "\n" << std::flush;
+      }
+    };
+    EngineJobExecutor executor(options, engine, *dataset, output);
+    JobRunnerOptions runner;
+    runner.output_dir = output;
+    runner.parallel_jobs = jobs;
+    runner.resume = args->resume;
+    const JobRunSummary summary = RunJobs(plan, executor, runner, on_progress);
+    if (terminal) std::cout << "\n";
+
+    std::cout << "done in " << FormatDuration(summary.wall_s) << ": " << summary.executed
+              << " jobs run, " << summary.resumed << " resumed, " << summary.failures.size()
+              << " failed; job time by kind:";
+    for (const auto& [kind, seconds] : summary.busy_s_by_kind) {
+      std::cout << " " << JobKindName(kind) << " " << std::fixed << std::setprecision(1)
+                << seconds << " s";
+    }
+    std::cout << "\n";
+    for (const JobFailure& failure : summary.failures) {
+      std::cout << "failed: " << failure.job_id << ": " << failure.message << "\n";
+    }
+    if (args->report && shard_count == 1) {
+      ReportRequest request;
+      request.config_path = args->config;
+      request.results_dirs = {output};
+      request.output_dir = output / "report";
+      request.figures = args->figures;
+      WriteExperimentReport(request);
+    }
+    SLAM_THROW_IF_NOT(Error, summary.ok())
+        << summary.failures.size() << " of " << plan.jobs.size() << " jobs failed (see above)";
+    return 0;
+  };
+}
+
+const bool kRegistered = RegisterCommand(
+    {"run", "Run an experiment matrix (features x maps x sessions) and write its report",
+     &SetupRun});
+
+}  // namespace
+}  // namespace duskmap::cli

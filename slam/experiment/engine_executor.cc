@@ -1,0 +1,283 @@
+#include "slam/experiment/engine_executor.h"
+
+#include <fstream>
+#include <numeric>
+#include <utility>
+#include <vector>
+
+#include "slam/core/check.h"
+#include "slam/core/timer.h"
+#include "slam/engine/record_io.h"
+#include "slam/engine/session_runs.h"
+#include "slam/eval/trajectory_error.h"
+#include "slam/experiment/feature_cache.h"
+#include "slam/experiment/job_results.h"
+#include "slam/features/feature_extractor.h"
+#include "slam/map/map_store.h"
+
+namespace duskmap {
+namespace fs = std::filesystem;
+namespace {
+
+StageTimesMs MeanTimes(const std::map<std::string, StageTimingSummary>& timings) {
+  const auto mean = [&](const char* stage) {
+    const auto it = timings.find(stage);
+    return it == timings.end() ? 0.0 : it->second.mean_ms;
+  };
+  StageTimesMs times;
+  times.features = mean("features");
+  times.loop_closure_detection = mean("lcd");
+  times.proximity_detection = mean("proximity");
+  times.transformation_estimation = mean("te");
+  times.optimisation = mean("optimization");
+  times.total = mean("total");
+  return times;
+}
+
+void WriteJsonRows(const fs::path& path, const std::vector<nlohmann::json>& rows) {
+  std::ofstream out(path);
+  SLAM_THROW_IF_NOT(InputError, out.good()) << path.string() << ": cannot write";
+  WriteJsonLines(out, rows);
+  SLAM_THROW_IF_NOT(InputError, out.good()) << path.string() << ": write failed";
+}
+
+std::map<std::string, size_t> MemoryComponents(const MapMemory& memory) {
+  return {{"descriptors", memory.descriptors_bytes},
+          {"keypoints_points", memory.keypoints_points_bytes},
+          {"words_index", memory.words_index_bytes},
+          {"graph", memory.graph_bytes},
+          {"filter", memory.filter_bytes}};
+}
+
+// ATE of the nodes of the session group holding the map's first session (the
+// map frame) against ground truth, and the graph (aligned to the truth) for
+// the top-view figure. ate_mm stays < 0 without ground truth.
+double WriteGraphAndAte(const Map& map, const fs::path& graph_file) {
+  std::vector<SessionId> group;
+  for (const auto& g : map.ConnectedSessionGroups()) {
+    for (SessionId s : g) {
+      if (s == 0) group = g;
+    }
+  }
+  std::vector<const MapNode*> nodes;
+  std::vector<Rigid3d> estimated, truth;
+  for (const auto& [id, node] : map.nodes()) {
+    nodes.push_back(&node);
+    const bool in_group = std::find(group.begin(), group.end(), node.session) != group.end();
+    if (in_group && node.truth_from_camera) {
+      estimated.push_back(node.map_from_camera());
+      truth.push_back(*node.truth_from_camera);
+    }
+  }
+  std::optional<AteResult> ate;
+  if (estimated.size() >= 3) ate = ComputeAte(estimated, truth);
+  std::ofstream out(graph_file);
+  SLAM_THROW_IF_NOT(InputError, out.good()) << graph_file.string() << ": cannot write";
+  out << "node,session,connected,x,y,truth_x,truth_y\n";
+  for (const MapNode* node : nodes) {
+    Eigen::Vector3d p = node->map_from_camera().translation;
+    if (ate) p = ate->alignment.Apply(p);
+    const bool in_group = std::find(group.begin(), group.end(), node->session) != group.end();
+    out << node->id << "," << map.sessions()[node->session].name << "," << (in_group ? 1 : 0)
+        << "," << p.x() << "," << p.y() << ",";
+    if (node->truth_from_camera) {
+      out << node->truth_from_camera->translation.x() << ","
+          << node->truth_from_camera->translation.y();
+    } else {
+      out << ",";
+    }
+    out << "\n";
+  }
+  SLAM_THROW_IF_NOT(InputError, out.good()) << graph_file.string() << ": write failed";
+  return ate ? 1000.0 * ate->rmse_m : -1.0;
+}
+
+}  // namespace
+
+EngineOptions EngineOptionsForFeature(const EngineOptions& base, const FeatureSetup& setup) {
+  EngineOptions options = base;
+  options.features.type = setup.extractor;
+  SLAM_THROW_IF_NOT(ConfigError, setup.matcher == "nndr")
+      << "feature " << setup.label << ": matcher '" << setup.matcher
+      << "' is not available in this engine build";
+  if (setup.needs_model) {
+    SLAM_THROW_IF_NOT(ConfigError, !options.features.superpoint.model_path.empty())
+        << "feature " << setup.label << " needs features.superpoint.model_path in the engine config";
+  }
+  options.Check();
+  return options;
+}
+
+EngineJobExecutor::EngineJobExecutor(const ExperimentOptions& experiment,
+                                     const EngineOptions& engine, const DatasetReader& dataset,
+                                     fs::path output_dir)
+    : experiment_(experiment),
+      engine_(engine),
+      dataset_(dataset),
+      output_dir_(std::move(output_dir)) {}
+
+fs::path EngineJobExecutor::CacheFile(const std::string& extractor,
+                                      const std::string& session) const {
+  return OutputDir(output_dir_, "extract/" + extractor + "/" + session) / kFeatureCacheFile;
+}
+
+double EngineJobExecutor::ExtractionMeanMs(const std::string& extractor,
+                                           const std::string& session) const {
+  const fs::path dir = OutputDir(output_dir_, "extract/" + extractor + "/" + session);
+  const nlohmann::json summary = ReadSummary(dir);
+  try {
+    return summary.at("extraction_ms").at("mean").get<double>();
+  } catch (const nlohmann::json::exception& e) {
+    SLAM_THROW(InputError) << (dir / "summary.json").string() << ": no extraction time ("
+                           << e.what() << ")";
+  }
+  return 0.0;
+}
+
+void EngineJobExecutor::Execute(const Job& job, const fs::path& job_dir) {
+  switch (job.kind) {
+    case JobKind::kExtract:
+      Extract(job, job_dir);
+      return;
+    case JobKind::kBuildMap:
+      BuildMapJob(job, job_dir);
+      return;
+    case JobKind::kLocalize:
+      Localize(job, job_dir);
+      return;
+  }
+}
+
+void EngineJobExecutor::Extract(const Job& job, const fs::path& job_dir) {
+  std::unique_ptr<SessionReader> reader;
+  {
+    std::lock_guard<std::mutex> lock(dataset_mutex_);
+    reader = dataset_.OpenSession(job.session);
+  }
+  EngineOptions options = engine_;
+  options.features.type = job.extractor;
+  options.features.Check();
+  const std::unique_ptr<FeatureExtractor> extractor = CreateFeatureExtractor(options.features);
+  FeatureCacheWriter writer(job_dir / kFeatureCacheFile, job.extractor, reader->info());
+  std::vector<double> times_ms;
+  double features_sum = 0.0;
+  int64_t position = 0;
+  while (std::optional<RgbdFrame> frame = reader->Next()) {
+    const int64_t index = position++;
+    if (index % experiment_.frame_step != 0) continue;
+    if (experiment_.max_frames_per_session > 0 &&
+        writer.num_frames() >= experiment_.max_frames_per_session) {
+      break;
+    }
+    Stopwatch watch;
+    const FrameFeatures features = extractor->Extract(frame->bgr, frame->depth_m, &frame->camera);
+    times_ms.push_back(watch.ElapsedMs());
+    features_sum += features.size();
+    writer.Append(*frame, features);
+  }
+  writer.Close();
+  SLAM_THROW_IF_NOT(InputError, writer.num_frames() > 0)
+      << "session " << job.session << ": no frame to extract features from";
+  const StageTimingSummary t = SummarizeTimes(times_ms);
+  WriteSummary(job_dir, {{"extractor", job.extractor},
+                         {"session", job.session},
+                         {"frames", writer.num_frames()},
+                         {"mean_features", features_sum / writer.num_frames()},
+                         {"extraction_ms", {{"median", t.median_ms}, {"mean", t.mean_ms},
+                                            {"max", t.max_ms}}}});
+}
+
+void EngineJobExecutor::BuildMapJob(const Job& job, const fs::path& job_dir) {
+  EngineOptions options = EngineOptionsForFeature(engine_, FeatureSetupByLabel(job.feature));
+  options.mapping.reduce_graph = job.map.kind == MapKind::kReduced;
+  std::vector<std::unique_ptr<FeatureCacheReader>> readers;
+  std::vector<FrameSource*> sources;
+  for (const std::string& session : job.map.sessions) {
+    readers.push_back(std::make_unique<FeatureCacheReader>(CacheFile(job.extractor, session)));
+    sources.push_back(readers.back().get());
+  }
+  MappingRun run = BuildMap(sources, options);
+  SaveMap(run.map, (job_dir / kMapFile).string());
+
+  MapJobSummary summary;
+  const Map& map = run.map;
+  summary.num_nodes = static_cast<int>(map.nodes().size());
+  for (const MapSession& session : map.sessions()) summary.nodes_per_session[session.name] = 0;
+  for (const auto& [id, node] : map.nodes()) ++summary.nodes_per_session[map.sessions()[node.session].name];
+  for (const auto& [key, link] : map.links()) ++summary.links_per_type[LinkTypeName(link.type)];
+  summary.num_connected_components = static_cast<int>(map.ConnectedSessionGroups().size());
+  summary.vocabulary_words = static_cast<int>(map.words().ids.size());
+  for (const auto& [id, node] : map.nodes()) {
+    if (!node.features.empty()) {
+      summary.descriptor_bytes_per_feature = node.features.DescriptorBytes();
+      break;
+    }
+  }
+  summary.memory_bytes = MemoryComponents(run.memory);
+  summary.ate_mm = WriteGraphAndAte(map, job_dir / kGraphFile);
+  double features_sum = 0.0;
+  std::vector<nlohmann::json> rows;
+  for (const MappingFrameResult& frame : run.frames) {
+    features_sum += frame.num_features;
+    rows.push_back(MappingResultToJson(frame));
+  }
+  summary.mean_features = run.frames.empty() ? 0.0 : features_sum / run.frames.size();
+  summary.mean_times_ms = MeanTimes(run.timings);
+  double extraction_ms = 0.0;
+  for (const std::string& session : job.map.sessions) {
+    extraction_ms += ExtractionMeanMs(job.extractor, session) / job.map.sessions.size();
+  }
+  summary.mean_times_ms.features = extraction_ms;
+  summary.mean_times_ms.total += extraction_ms;
+  summary.build_wall_s = run.wall_s;
+  WriteJsonRows(job_dir / kFramesFile, rows);
+  WriteSummary(job_dir, summary);
+}
+
+void EngineJobExecutor::Localize(const Job& job, const fs::path& job_dir) {
+  const EngineOptions options = EngineOptionsForFeature(engine_, FeatureSetupByLabel(job.feature));
+  const Map map = LoadMap((OutputDir(output_dir_, "map/" + job.feature + "/" + job.map.label) /
+                           kMapFile)
+                              .string());
+  FeatureCacheReader source(CacheFile(job.extractor, job.session));
+  const LocalizationRun run = LocalizeSession(map, source, options);
+
+  LocalizationJobSummary summary;
+  const RelocalizationSummary& r = run.summary.relocalization;
+  summary.num_frames = r.num_frames;
+  summary.num_relocalized = r.num_relocalized;
+  summary.has_ground_truth = run.summary.evaluated;
+  summary.num_within_threshold = r.num_within;
+  summary.num_wrong = r.num_wrong;
+  summary.mean_jump_mm = run.summary.mean_jump_mm;
+  summary.max_gap_m = run.summary.gaps.max_gap_m;
+  summary.num_within_55cm = run.summary.gaps.num_within;
+  double inliers_pct_sum = 0.0;
+  double features_sum = 0.0;
+  std::vector<nlohmann::json> rows;
+  for (const LocalizationRecord& record : run.records) {
+    features_sum += record.num_features;
+    if (record.outcome == LocalizationOutcome::kNoCandidate ||
+        (record.outcome == LocalizationOutcome::kBadSignature && record.proximity_candidates == 0)) {
+      ++summary.num_no_candidate;
+    }
+    if (record.relocalized) {
+      if (record.num_features > 0) inliers_pct_sum += 100.0 * record.inliers / record.num_features;
+      summary.matched_session_per_frame.push_back(map.sessions()[record.matched_session].name);
+    } else {
+      summary.matched_session_per_frame.emplace_back();
+    }
+    rows.push_back(LocalizationRecordToJson(record));
+  }
+  summary.mean_inliers_pct = r.num_relocalized > 0 ? inliers_pct_sum / r.num_relocalized : 0.0;
+  summary.mean_features = run.records.empty() ? 0.0 : features_sum / run.records.size();
+  summary.mean_times_ms = MeanTimes(run.timings);
+  // Features came from the cache: their extraction time is the extract job's.
+  summary.mean_times_ms.features = ExtractionMeanMs(job.extractor, job.session);
+  summary.mean_times_ms.total += summary.mean_times_ms.features;
+  WriteJsonRows(job_dir / kFramesFile, rows);
+  WriteCorrectedTrajectory((job_dir / kTrajectoryFile).string(), run.records);
+  WriteSummary(job_dir, summary);
+}
+
+}  // namespace duskmap

@@ -1,0 +1,48 @@
+// run.json: what one `duskmap run` covered, written into its results folder
+// before any job runs, so that `duskmap report` can rebuild the same plan
+// from the results alone (on another machine, without the dataset): the
+// feature columns that ran and those skipped (and why), each session's clock
+// time, and the shard.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "slam/experiment/experiment_config.h"
+#include "slam/experiment/job_plan.h"
+#include "slam/io/dataset_reader.h"
+
+namespace duskmap {
+
+struct SkippedFeature {
+  std::string label;
+  std::string reason;
+};
+
+struct RunManifest {
+  std::string config_path;
+  std::string dataset_path;
+  std::vector<std::string> features;        // columns that ran
+  std::vector<SkippedFeature> skipped_features;
+  SessionClock session_clock;               // minutes since midnight, by session name
+  int shard_index = 0;
+  int shard_count = 1;
+};
+
+// Clock time of every dataset session that has one.
+SessionClock SessionClockOf(const std::vector<SessionInfo>& sessions);
+
+// Splits the configured feature columns into those that can run with these
+// engine options and those skipped (SuperPoint/SuperGlue without a model).
+void SelectRunnableFeatures(const ExperimentOptions& options, const std::string& superpoint_model,
+                            RunManifest* manifest);
+
+void WriteRunManifest(const RunManifest& manifest, const std::filesystem::path& results_dir);
+// Throws InputError naming the file when run.json is missing or malformed.
+RunManifest ReadRunManifest(const std::filesystem::path& results_dir);
+
+// The plan of the manifest's features (all shards, for reports).
+ExperimentPlan PlanFromManifest(ExperimentOptions options, const RunManifest& manifest);
+
+}  // namespace duskmap
