@@ -6,6 +6,11 @@
 //   build-feat/bench/features_bench --benchmark_repetitions=7
 //       --benchmark_report_aggregates_only=true
 // SuperPoint is timed when DUSKMAP_SUPERPOINT_ONNX names a model file.
+// SuperGlue matching of 1000 x 1000 keypoints (random 256-D descriptors,
+// 640x480 images) is timed when DUSKMAP_SUPERGLUE_ONNX names a model file,
+// e.g. one written by scripts/make_test_superglue_onnx.py (same size and
+// graph as the official weights); it runs with OpenCV's default threads
+// (CPU time is the whole process's).
 #include <cstdlib>
 #include <string>
 
@@ -15,6 +20,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "slam/features/feature_extractor.h"
+#include "slam/features/superglue.h"
 
 namespace duskmap {
 namespace {
@@ -58,10 +64,54 @@ void BM_Extract(benchmark::State& state, const std::string& type) {
   state.counters["keypoints"] = static_cast<double>(keypoints);
 }
 
+FrameFeatures RandomSuperPointLike(int count, uint64_t seed) {
+  cv::RNG rng(seed);
+  FrameFeatures f;
+  f.descriptors.create(count, 256, CV_32F);
+  rng.fill(f.descriptors, cv::RNG::NORMAL, 0.0, 1.0);
+  for (int i = 0; i < count; ++i) {
+    cv::Mat row = f.descriptors.row(i);
+    row /= cv::norm(row);
+    f.keypoints.emplace_back(cv::Point2f(rng.uniform(0.0f, 640.0f), rng.uniform(0.0f, 480.0f)),
+                             8.0f, -1.0f, rng.uniform(0.01f, 1.0f));
+  }
+  return f;
+}
+
+void BM_SuperGlueMatch(benchmark::State& state) {
+  SuperGlueOptions options;
+  options.model_path = std::getenv("DUSKMAP_SUPERGLUE_ONNX");
+  const SuperGlueMatcher matcher(options);
+  const int n = static_cast<int>(state.range(0));
+  // b sees a's keypoints shifted by 5 px with noisy descriptors.
+  const FrameFeatures a = RandomSuperPointLike(n, 1);
+  FrameFeatures b = RandomSuperPointLike(n, 2);
+  for (int i = 0; i < n; ++i) {
+    b.keypoints[i].pt = a.keypoints[i].pt + cv::Point2f(5.0f, 0.0f);
+    cv::Mat row = b.descriptors.row(i);
+    row = a.descriptors.row(i) + 0.05 * row;
+    row /= cv::norm(row);
+  }
+  const cv::Size image(640, 480);
+  size_t matches = 0;
+  for (auto _ : state) {
+    matches = matcher.Match(a, image, b, image).size();
+    benchmark::ClobberMemory();
+  }
+  state.counters["matches"] = static_cast<double>(matches);
+}
+
 const bool kRegistered = [] {
   for (const std::string& type : FeatureTypeNames()) {
     if (type == "superpoint" && std::getenv("DUSKMAP_SUPERPOINT_ONNX") == nullptr) continue;
     benchmark::RegisterBenchmark(("Extract/" + type).c_str(), BM_Extract, type)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+  }
+  if (std::getenv("DUSKMAP_SUPERGLUE_ONNX") != nullptr) {
+    benchmark::RegisterBenchmark("SuperGlueMatch", BM_SuperGlueMatch)
+        ->Arg(1000)
+        ->MeasureProcessCPUTime()
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime();
   }
