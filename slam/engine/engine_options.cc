@@ -35,6 +35,10 @@ void EngineOptions::Check() const {
   LoopClosure().Check();
   proximity.Check();
   Registration().Check();
+  matcher.Check();
+  SLAM_THROW_IF_NOT(ConfigError, matcher.type != "superglue" || features.type == "superpoint")
+      << "EngineOptions.matcher.type: superglue needs features.type superpoint, got "
+      << features.type;
   optimizer.Check();
   odometry.Check();
   mapping.Check();
@@ -80,6 +84,8 @@ EngineOptions ReadEngineOptions(JsonFields& fields) {
   registration.Read("binary_nndr_ratio", &o.registration.matching.binary_ratio);
   registration.Read("max_reprojection_error_px", &o.registration.pnp.max_reprojection_error_px);
   registration.RejectUnknown();
+  JsonFields matcher = fields.Child("matcher");
+  o.matcher = ReadMatcherOptions(matcher);
   JsonFields lcd = fields.Child("loop_closure");
   lcd.Read("loop_threshold", &o.loop_closure.loop_threshold);
   lcd.Read("aggressive_loop_threshold", &o.loop_closure.aggressive_loop_threshold);
@@ -128,6 +134,7 @@ nlohmann::json EngineOptionsToJson(const EngineOptions& o) {
         {"float_nndr_ratio", o.registration.matching.float_ratio},
         {"binary_nndr_ratio", o.registration.matching.binary_ratio},
         {"max_reprojection_error_px", o.registration.pnp.max_reprojection_error_px}}},
+      {"matcher", MatcherOptionsToJson(o.matcher)},
       {"loop_closure",
        {{"loop_threshold", o.loop_closure.loop_threshold},
         {"aggressive_loop_threshold", o.loop_closure.aggressive_loop_threshold},

@@ -11,6 +11,7 @@
 
 #include "slam/core/json_fields.h"
 #include "slam/features/feature_options.h"
+#include "slam/features/matcher_options.h"
 #include "slam/graph/pose_graph_optimizer.h"
 #include "slam/registration/transform_estimation.h"
 #include "slam/retrieval/loop_closure_detector.h"
@@ -48,6 +49,9 @@ struct EngineOptions {
   LoopClosureOptions loop_closure;
   ProximityOptions proximity;
   RegistrationOptions registration;
+  // Registration's descriptor matcher: "nndr" or "superglue" (SuperPoint only;
+  // no second, window-guided pass then, as in the paper's SuperGlue runs).
+  MatcherOptions matcher;
   PoseGraphOptimizerOptions optimizer;
   OdometryNoiseOptions odometry;
   MappingOptions mapping;

@@ -26,6 +26,7 @@ Localizer::Localizer(const Map& map, const EngineOptions& options)
       << "Localizer: the map was built with feature type '" << map.metadata().feature_type
       << "', the options ask for '" << options_.features.type << "'";
   extractor_ = CreateFeatureExtractor(options_.features);
+  matcher_ = CreateFeatureMatcher(options_.matcher);
   lcd_ = std::make_unique<LoopClosureDetector>(options_.LoopClosure());
   for (const auto& [id, node] : map_.nodes()) lcd_->AddMapNode(id, node.session, node.features);
   for (const auto& [key, link] : map_.links()) lcd_->graph().AddLink(link.from, link.to, link.type);
@@ -120,7 +121,8 @@ bool Localizer::TryCandidate(const Candidate& candidate, const RgbdFrame& frame,
   const MapNode& node = map_.node(candidate.node);
   Stopwatch watch;
   const RegistrationResult registration =
-      EstimateTransform(registration_, node.features, node.camera, features, frame.camera);
+      EstimateTransform(registration_, node.features, node.camera, features, frame.camera,
+                        matcher_.get());
   record->timings.registration_ms += watch.ElapsedMs();
   ++record->candidates_tried;
   record->registration_status = registration.status;

@@ -53,6 +53,7 @@ class Localizer {
   const Map& map_;
   EngineOptions options_;
   RegistrationOptions registration_;
+  std::unique_ptr<FeatureMatcher> matcher_;  // nullptr: registration's NNDR
   std::unique_ptr<FeatureExtractor> extractor_;
   std::unique_ptr<LoopClosureDetector> lcd_;
   std::optional<Rigid3d> map_from_odom_;

@@ -33,6 +33,7 @@ Mapper::Mapper(const EngineOptions& options)
     : options_(options), registration_(options.Registration()) {
   options_.Check();
   extractor_ = CreateFeatureExtractor(options_.features);
+  matcher_ = CreateFeatureMatcher(options_.matcher);
   lcd_ = std::make_unique<LoopClosureDetector>(options_.LoopClosure());
   MapMetadata metadata;
   metadata.feature_type = options_.features.type;
@@ -178,7 +179,7 @@ std::optional<Link> Mapper::RegisterCandidate(NodeId current, const Candidate& c
   Stopwatch watch;
   const RegistrationResult registration =
       EstimateTransform(registration_, old_node.features, old_node.camera, new_node.features,
-                        new_node.camera);
+                        new_node.camera, matcher_.get());
   result->timings.registration_ms += watch.ElapsedMs();
   ++result->registrations;
   if (!registration.accepted()) return std::nullopt;

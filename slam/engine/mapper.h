@@ -84,6 +84,7 @@ class Mapper {
 
   EngineOptions options_;
   RegistrationOptions registration_;
+  std::unique_ptr<FeatureMatcher> matcher_;  // nullptr: registration's NNDR
   std::unique_ptr<FeatureExtractor> extractor_;
   std::unique_ptr<LoopClosureDetector> lcd_;
   Map map_;
