@@ -35,10 +35,6 @@ float KdForest::QueryValue(const uint8_t* q, int dim) const {
 
 float KdForest::Value(uint32_t p, int dim) const { return QueryValue(Data(p), dim); }
 
-float KdForest::Distance(const uint8_t* q, uint32_t p) const {
-  return DescriptorDistance(kind_, q, Data(p), cols_);
-}
-
 const uint8_t* KdForest::Row(WordId id) const {
   auto it = slot_.find(id);
   SLAM_CHECK(it != slot_.end());
@@ -46,11 +42,22 @@ const uint8_t* KdForest::Row(WordId id) const {
 }
 
 int32_t KdForest::MakeLeaf(const std::vector<uint32_t>& idx, size_t begin, size_t end) {
+  const size_t count = end - begin;
+  const size_t capacity = std::max(count, static_cast<size_t>(options_.leaf_size) + 1);
+  pool_.push_back({static_cast<uint32_t>(capacity), kNoWord});
   Node node;
-  node.leaf = static_cast<int32_t>(leaves_.size());
-  leaves_.emplace_back(idx.begin() + begin, idx.begin() + end);
+  node.child[0] = static_cast<int32_t>(pool_.size());
+  node.child[1] = static_cast<int32_t>(count);
+  for (size_t i = begin; i < end; ++i) pool_.push_back({idx[i], ids_[idx[i]]});
+  pool_.resize(pool_.size() + capacity - count);
   nodes_.push_back(node);
   return static_cast<int32_t>(nodes_.size() - 1);
+}
+
+int32_t KdForest::LeafOf(int tree, uint32_t p) const {
+  int32_t n = roots_[tree];
+  while (nodes_[n].dim >= 0) n = nodes_[n].child[Value(p, nodes_[n].dim) < nodes_[n].split ? 0 : 1];
+  return n;
 }
 
 // Splits rows idx[begin, end) at the mean of one of the most varying
@@ -99,20 +106,25 @@ int32_t KdForest::Divide(std::vector<uint32_t>* idx, size_t begin, size_t end) {
 }
 
 void KdForest::Rebuild() {
+  // Live points in id order: ids are added in increasing order, so this is
+  // the insertion order, which fixes the shuffles below.
+  std::vector<std::pair<WordId, uint32_t>> live;
+  live.reserve(slot_.size());
+  for (const auto& [id, p] : slot_) live.push_back({id, p});
+  std::sort(live.begin(), live.end());
   std::vector<uint8_t> data;
   std::vector<WordId> ids;
-  data.reserve(slot_.size() * row_bytes_);
-  ids.reserve(slot_.size());
-  for (uint32_t p = 0; p < ids_.size(); ++p) {
-    if (ids_[p] == kNoWord) continue;
-    slot_[ids_[p]] = static_cast<uint32_t>(ids.size());
-    ids.push_back(ids_[p]);
+  data.reserve(live.size() * row_bytes_);
+  ids.reserve(live.size());
+  for (const auto& [id, p] : live) {
+    slot_[id] = static_cast<uint32_t>(ids.size());
+    ids.push_back(id);
     data.insert(data.end(), Data(p), Data(p) + row_bytes_);
   }
   data_.swap(data);
   ids_.swap(ids);
   nodes_.clear();
-  leaves_.clear();
+  pool_.clear();
   roots_.clear();
   rows_at_build_ = ids_.size();
   ++rebuilds_;
@@ -123,19 +135,76 @@ void KdForest::Rebuild() {
     std::shuffle(idx.begin(), idx.end(), rng_);
     roots_.push_back(Divide(&idx, 0, idx.size()));
   }
+  RenumberByLeaves();
+}
+
+void KdForest::RenumberByLeaves() {
+  const uint32_t n = static_cast<uint32_t>(ids_.size());
+  constexpr uint32_t kUnset = ~0u;
+  std::vector<uint32_t> renamed(n, kUnset);
+  uint32_t next = 0;
+  std::vector<int32_t> stack = {roots_[0]};
+  while (!stack.empty()) {
+    const Node node = nodes_[stack.back()];
+    stack.pop_back();
+    if (node.dim >= 0) {
+      stack.push_back(node.child[1]);
+      stack.push_back(node.child[0]);
+      continue;
+    }
+    for (int32_t i = 0; i < node.child[1]; ++i) {
+      uint32_t& r = renamed[pool_[node.child[0] + i].point];
+      if (r == kUnset) r = next++;
+    }
+  }
+  for (uint32_t& r : renamed) {
+    if (r == kUnset) r = next++;  // not in the first tree (cannot happen after a build)
+  }
+  std::vector<uint8_t> data(data_.size());
+  std::vector<WordId> ids(n);
+  for (uint32_t p = 0; p < n; ++p) {
+    std::copy_n(Data(p), row_bytes_, &data[static_cast<size_t>(renamed[p]) * row_bytes_]);
+    ids[renamed[p]] = ids_[p];
+    slot_[ids_[p]] = renamed[p];
+  }
+  data_.swap(data);
+  ids_.swap(ids);
+  for (const Node& node : nodes_) {
+    if (node.dim >= 0) continue;
+    for (int32_t i = 0; i < node.child[1]; ++i) {
+      LeafEntry& entry = pool_[node.child[0] + i];
+      entry.point = renamed[entry.point];
+    }
+  }
 }
 
 void KdForest::Insert(int tree, uint32_t p) {
-  int32_t n = roots_[tree];
-  while (nodes_[n].dim >= 0) n = nodes_[n].child[Value(p, nodes_[n].dim) < nodes_[n].split ? 0 : 1];
-  std::vector<uint32_t>& leaf = leaves_[nodes_[n].leaf];
-  leaf.push_back(p);
-  if (leaf.size() <= static_cast<size_t>(options_.leaf_size)) return;
-  std::vector<uint32_t> points = leaf;
+  const int32_t n = LeafOf(tree, p);
+  int32_t offset = nodes_[n].child[0];
+  const int32_t count = nodes_[n].child[1];
+  const uint32_t capacity = pool_[offset - 1].point;
+  if (static_cast<uint32_t>(count) == capacity) {  // full (rows that cannot be split): grow
+    pool_.push_back({2 * capacity, kNoWord});
+    const int32_t moved = static_cast<int32_t>(pool_.size());
+    pool_.resize(pool_.size() + 2 * capacity);
+    std::copy_n(pool_.begin() + offset, count, pool_.begin() + moved);
+    offset = moved;
+    nodes_[n].child[0] = offset;
+  }
+  pool_[offset + count] = {p, ids_[p]};
+  nodes_[n].child[1] = count + 1;
+  if (count + 1 <= options_.leaf_size) return;
+  std::vector<uint32_t> points;
+  for (int32_t i = 0; i <= count; ++i) points.push_back(pool_[offset + i].point);
+  const size_t nodes_before = nodes_.size();
+  const size_t pool_before = pool_.size();
   const int32_t sub = Divide(&points, 0, points.size());
-  if (nodes_[sub].dim < 0) return;  // rows identical on every sampled dimension: keep the leaf
-  leaves_[nodes_[n].leaf] = std::vector<uint32_t>();
-  nodes_[n] = nodes_[sub];  // the subtree's root slot is left unused until the next rebuild
+  if (nodes_[sub].dim < 0) {  // rows identical on every sampled dimension: keep the leaf
+    nodes_.resize(nodes_before);
+    pool_.resize(pool_before);
+    return;
+  }
+  nodes_[n] = nodes_[sub];  // the subtree's root slot and the old block stay unused until a rebuild
 }
 
 void KdForest::Add(WordId id, const uint8_t* row) {
@@ -154,66 +223,143 @@ void KdForest::Add(WordId id, const uint8_t* row) {
 bool KdForest::Remove(WordId id) {
   auto it = slot_.find(id);
   if (it == slot_.end()) return false;
-  ids_[it->second] = kNoWord;
+  const uint32_t p = it->second;
+  ids_[p] = kNoWord;
   slot_.erase(it);
-  if (slot_.empty()) Rebuild();  // frees everything
+  if (slot_.empty()) {
+    Rebuild();  // frees everything
+    return true;
+  }
+  // A point's leaf is where its own values lead (the build and the
+  // insertion split on the same comparison), in every tree.
+  for (int t = 0; t < static_cast<int>(roots_.size()); ++t) {
+    const Node& leaf = nodes_[LeafOf(t, p)];
+    bool marked = false;
+    for (int32_t i = 0; i < leaf.child[1]; ++i) {
+      LeafEntry& entry = pool_[leaf.child[0] + i];
+      if (entry.point == p) {
+        entry.id = kNoWord;
+        marked = true;
+      }
+    }
+    SLAM_CHECK(marked);
+  }
   return true;
 }
 
-void KdForest::Descend(int32_t n, const uint8_t* q, float mindist, int* checks,
-                       std::vector<std::pair<float, int32_t>>* heap, KdNeighbour best[2],
-                       int* found) const {
-  while (nodes_[n].dim >= 0) {
-    const Node& node = nodes_[n];
-    const float diff = QueryValue(q, node.dim) - node.split;
-    const int near = diff < 0 ? 0 : 1;
-    const float far = mindist + (kind_ == DescriptorKind::kFloat ? diff * diff : std::abs(diff));
-    heap->push_back({far, node.child[1 - near]});
-    std::push_heap(heap->begin(), heap->end(), std::greater<>());
-    n = node.child[near];
+bool KdForest::Visit(uint32_t p) const {
+  if (2 * (visited_count_ + 1) > visited_.size()) {  // keep the load at most 1/2
+    std::vector<uint32_t> old(std::max<size_t>(256, 2 * visited_.size()), 0u);
+    old.swap(visited_);
+    visited_count_ = 0;
+    for (uint32_t key : old) {
+      if (key != 0) Visit(key - 1);
+    }
   }
-  for (uint32_t p : leaves_[nodes_[n].leaf]) {
-    if (ids_[p] == kNoWord || visited_[p] == stamp_) continue;
-    visited_[p] = stamp_;
+  const size_t mask = visited_.size() - 1;
+  for (size_t slot = (p * 2654435761u) & mask;; slot = (slot + 1) & mask) {
+    if (visited_[slot] == p + 1) return false;
+    if (visited_[slot] == 0) {
+      visited_[slot] = p + 1;
+      ++visited_count_;
+      return true;
+    }
+  }
+}
+
+int32_t KdForest::Step(int32_t n, const uint8_t* q, float mindist,
+                       std::vector<std::pair<float, int32_t>>* heap) const {
+  const Node& node = nodes_[n];
+  const float diff = QueryValue(q, node.dim) - node.split;
+  const int near = diff < 0 ? 0 : 1;
+  const float far = mindist + (kind_ == DescriptorKind::kFloat ? diff * diff : std::abs(diff));
+  heap->push_back({far, node.child[1 - near]});
+  std::push_heap(heap->begin(), heap->end(), std::greater<>());
+  return node.child[near];
+}
+
+void KdForest::PrefetchLeafRows(int32_t n) const {
+  const LeafEntry* leaf = &pool_[nodes_[n].child[0]];
+  for (int32_t i = 0; i < nodes_[n].child[1]; ++i) {
+    const uint8_t* row = Data(leaf[i].point);
+    for (size_t b = 0; b < row_bytes_; b += 64) __builtin_prefetch(row + b);
+  }
+}
+
+void KdForest::CheckLeaf(int32_t n, const uint8_t* q, int* checks, KdNeighbour best[2],
+                         int* found) const {
+  const LeafEntry* leaf = &pool_[nodes_[n].child[0]];
+  const int32_t count = nodes_[n].child[1];
+  for (int32_t i = 0; i < count; ++i) {
+    const LeafEntry entry = leaf[i];
+    if (entry.id == kNoWord || !Visit(entry.point)) continue;
     ++*checks;
-    const KdNeighbour c{ids_[p], Distance(q, p)};
+    const uint8_t* row = Data(entry.point);
     if (*found < 2) {
-      best[(*found)++] = c;
+      best[(*found)++] = {entry.id, DescriptorDistance(kind_, q, row, cols_)};
       if (*found == 2 && Closer(best[1], best[0])) std::swap(best[0], best[1]);
-    } else if (Closer(c, best[1])) {
+      continue;
+    }
+    // Only a row at most as far as the second best can change the result;
+    // the bounded distance is exact below the bound and >= it otherwise.
+    const float bound = best[1].distance;
+    float d = DescriptorDistanceBounded(kind_, q, row, cols_, bound);
+    if (d > bound) continue;
+    if (d == bound) d = DescriptorDistance(kind_, q, row, cols_);  // a tie decides by id
+    const KdNeighbour c{entry.id, d};
+    if (Closer(c, best[1])) {
       best[1] = c;
       if (Closer(best[1], best[0])) std::swap(best[0], best[1]);
     }
   }
 }
 
+// Best-bin-first search as FLANN's: one descent per tree, then the queued
+// branches nearest first until `checks` rows were compared. The descents of
+// the trees are independent, so they go down level by level side by side
+// (their cache misses overlap), and the leaves' rows are requested before
+// any is compared. The heap orders (distance, node) pairs totally and the
+// two best are kept by (distance, id), so the order in which rows are
+// compared does not change the result.
 void KdForest::SearchTwo(const uint8_t* query, std::vector<KdNeighbour>* out) const {
   out->clear();
   if (slot_.empty()) return;
-  if (visited_.size() < ids_.size()) visited_.resize(ids_.size(), 0);
-  if (++stamp_ == 0) {
-    std::fill(visited_.begin(), visited_.end(), 0);
-    stamp_ = 1;
-  }
+  std::fill(visited_.begin(), visited_.end(), 0u);
+  visited_count_ = 0;
   KdNeighbour best[2];
   int found = 0, checks = 0;
   std::vector<std::pair<float, int32_t>>& heap = heap_;
   heap.clear();
-  for (int32_t root : roots_) Descend(root, query, 0.0f, &checks, &heap, best, &found);
+  std::vector<int32_t>& at = descents_;
+  at.assign(roots_.begin(), roots_.end());
+  for (bool moved = true; moved;) {
+    moved = false;
+    for (int32_t& n : at) {
+      if (nodes_[n].dim < 0) continue;
+      n = Step(n, query, 0.0f, &heap);
+      __builtin_prefetch(&nodes_[n]);
+      moved = true;
+    }
+  }
+  for (int32_t n : at) __builtin_prefetch(&pool_[nodes_[n].child[0]]);
+  for (int32_t n : at) PrefetchLeafRows(n);
+  for (int32_t n : at) CheckLeaf(n, query, &checks, best, &found);
   while (!heap.empty() && (checks < options_.checks || found < 2)) {
     std::pop_heap(heap.begin(), heap.end(), std::greater<>());
-    const auto [mindist, node] = heap.back();
+    auto [mindist, n] = heap.back();
     heap.pop_back();
-    Descend(node, query, mindist, &checks, &heap, best, &found);
+    if (!heap.empty()) __builtin_prefetch(&nodes_[heap.front().second]);  // likely the next
+    while (nodes_[n].dim >= 0) n = Step(n, query, mindist, &heap);
+    PrefetchLeafRows(n);
+    CheckLeaf(n, query, &checks, best, &found);
   }
   out->assign(best, best + found);
 }
 
 size_t KdForest::MemoryBytes() const {
   size_t bytes = data_.capacity() + ids_.capacity() * sizeof(WordId) +
-                 visited_.capacity() * sizeof(uint32_t) + nodes_.capacity() * sizeof(Node) +
-                 leaves_.capacity() * sizeof(leaves_[0]);
-  for (const auto& leaf : leaves_) bytes += leaf.capacity() * sizeof(uint32_t);
+                 nodes_.capacity() * sizeof(Node) + pool_.capacity() * sizeof(LeafEntry) +
+                 visited_.capacity() * sizeof(uint32_t);
   // unordered_map: one heap node (next pointer, key, value, cached hash) per id plus buckets.
   bytes += slot_.size() * 24 + slot_.bucket_count() * sizeof(void*);
   return bytes;

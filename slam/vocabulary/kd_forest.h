@@ -52,20 +52,39 @@ class KdForest {
   size_t MemoryBytes() const;
 
  private:
+  // Inner node: dim >= 0, children child[0] (value < split) and child[1].
+  // Leaf: dim == -1, child[0] = offset of its entries in pool_, child[1] =
+  // their count; pool_[offset - 1].point holds the block's capacity.
   struct Node {
-    int32_t dim = -1;         // -1: leaf
+    int32_t dim = -1;
     float split = 0.0f;
     int32_t child[2] = {-1, -1};
-    int32_t leaf = -1;        // index into leaves_
+  };
+  // A point in a leaf with its id (kNoWord once removed), so that a search
+  // reads the id next to the point index instead of in a per-point table.
+  struct LeafEntry {
+    uint32_t point = 0;
+    WordId id = kNoWord;
   };
   float Value(uint32_t p, int dim) const;
   float QueryValue(const uint8_t* q, int dim) const;
-  float Distance(const uint8_t* q, uint32_t p) const;
   int32_t Divide(std::vector<uint32_t>* idx, size_t begin, size_t end);
   int32_t MakeLeaf(const std::vector<uint32_t>& idx, size_t begin, size_t end);
+  // The leaf of `tree` that holds (or would hold) point p.
+  int32_t LeafOf(int tree, uint32_t p) const;
   void Insert(int tree, uint32_t p);
-  void Descend(int32_t node, const uint8_t* q, float mindist, int* checks,
-               std::vector<std::pair<float, int32_t>>* heap, KdNeighbour best[2], int* found) const;
+  // Renumbers the points so that the rows of each leaf of the first tree are
+  // adjacent in data_ (fewer cache misses per leaf; results are unchanged).
+  void RenumberByLeaves();
+  // One level down from inner node n: queues the far child (best-bin-first
+  // heap) and returns the near one.
+  int32_t Step(int32_t n, const uint8_t* q, float mindist,
+               std::vector<std::pair<float, int32_t>>* heap) const;
+  void PrefetchLeafRows(int32_t leaf) const;
+  // Compares the query with the rows of a leaf not compared yet.
+  void CheckLeaf(int32_t leaf, const uint8_t* q, int* checks, KdNeighbour best[2], int* found) const;
+  // Marks p as compared by this search; false when it already was.
+  bool Visit(uint32_t p) const;
   const uint8_t* Data(uint32_t p) const { return &data_[static_cast<size_t>(p) * row_bytes_]; }
 
   KdForestOptions options_;
@@ -74,17 +93,18 @@ class KdForest {
   int dims_;
   size_t row_bytes_;
   Rng rng_;
-  std::vector<uint8_t> data_;           // rows by point index
+  std::vector<uint8_t> data_;           // rows by point index (removed rows until a rebuild)
   std::vector<WordId> ids_;             // point -> id (kNoWord once removed)
   std::unordered_map<WordId, uint32_t> slot_;  // id -> point
   std::vector<Node> nodes_;
-  std::vector<std::vector<uint32_t>> leaves_;
+  std::vector<LeafEntry> pool_;         // leaf entry blocks (see Node)
   std::vector<int32_t> roots_;
   size_t rows_at_build_ = 0;
   int rebuilds_ = 0;
-  mutable std::vector<uint32_t> visited_;  // per point: stamp of the last search that compared it
-  mutable uint32_t stamp_ = 0;
+  mutable std::vector<uint32_t> visited_;  // open-addressing set of point + 1 (0 = empty)
+  mutable size_t visited_count_ = 0;
   mutable std::vector<std::pair<float, int32_t>> heap_;  // search scratch
+  mutable std::vector<int32_t> descents_;                 // search scratch: one node per tree
 };
 
 }  // namespace duskmap

@@ -15,6 +15,7 @@
 #include "slam/features/frame_features.h"
 #include "slam/vocabulary/descriptor_index.h"
 #include "slam/vocabulary/inverted_index.h"
+#include "slam/vocabulary/vocabulary_snapshot.h"
 #include "slam/vocabulary/word_types.h"
 
 namespace duskmap {
@@ -82,6 +83,19 @@ class Vocabulary {
   size_t MemoryBytes() const;
   // Rebuilds the NN index from every live word (a batch build).
   void RebuildIndex();
+
+  // The words, the next word id and every node's references (see
+  // vocabulary_snapshot.h); Import of the result restores them exactly.
+  VocabularySnapshot Export() const;
+  // Restores a snapshot into this vocabulary, which must be empty (no node,
+  // no word, no word created yet), then batch-builds the NN index. Throws
+  // InputError naming the problem when the snapshot is inconsistent (ids not
+  // increasing, a reference to a missing word, a word nobody references,
+  // descriptors of the wrong type or count). The words, ids, references and
+  // n_j are restored exactly; the approximate NN trees are a fresh batch
+  // build, so lookups with few `checks` may differ from the exporting
+  // vocabulary's incrementally grown trees (with exhaustive checks they match).
+  void Import(const VocabularySnapshot& snapshot);
   const VocabularyOptions& options() const { return options_; }
 
  private:

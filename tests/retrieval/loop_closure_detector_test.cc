@@ -143,6 +143,39 @@ TEST_P(LcdTest, ASingleSpuriousSimilarFrameIsNotALoop) {
   }
 }
 
+// While the route is being revisited (the filter confident in the true
+// place), one frame shares half of its landmarks with a far place (place 30,
+// node 31) and none with the current one. That single frame must not make
+// node 31 (or its neighbours) an accepted loop, and the revisit goes on
+// being detected at the right places right after it.
+TEST_P(LcdTest, ASingleSpuriousFrameDuringARevisitDoesNotMoveTheLoop) {
+  LoopClosureDetector lcd{LoopClosureOptions()};
+  for (int k : MapRoute(&lcd, 40)) EXPECT_LT(k, 16) << "false loop after the start-up";
+  int accepted_after = 0;
+  for (int k = 0; k < 8; ++k) {
+    const NodeId node = 41 + k;
+    FrameFeatures f = Place(k, 3000 + k);
+    if (k == 4) {
+      std::vector<int64_t> mix = Window(200 * 30, 200);
+      const std::vector<int64_t> fresh = Window(30000000, 160);
+      const std::vector<int64_t> generic = Generic(78);
+      mix.insert(mix.end(), fresh.begin(), fresh.end());
+      mix.insert(mix.end(), generic.begin(), generic.end());
+      f = gen_.ToFeatures(gen_.Observe(mix, 0, 1.0, 78));
+    }
+    const LcdResult r = lcd.AddAndDetect(node, 0, f);
+    lcd.graph().AddLink(node - 1, node, LinkType::kOdometry);
+    if (k == 4) {
+      EXPECT_GT(lcd.last_likelihood().Raw(31), lcd.last_likelihood().mean);  // it is similar
+    }
+    if (r.accepted()) {
+      EXPECT_LE(std::abs(r.hypothesis - (k + 1)), 2) << "frame " << k << " score " << r.score;
+      if (k > 4) ++accepted_after;
+    }
+  }
+  EXPECT_GE(accepted_after, 2);
+}
+
 TEST_P(LcdTest, BadFramesEmptyMapsAndRemovals) {
   LoopClosureDetector lcd{LoopClosureOptions()};
   // Empty map.

@@ -1,5 +1,7 @@
 #include "slam/vocabulary/descriptor_index.h"
 
+#include <limits>
+
 #include <gtest/gtest.h>
 
 #include "slam/core/check.h"
@@ -131,6 +133,28 @@ TEST(DescriptorDistance, SquaredL2AndHamming) {
                   13.0f);
   uint8_t x[9] = {0xFF, 0, 0, 0, 0, 0, 0, 0, 0x01}, y[9] = {0};
   EXPECT_FLOAT_EQ(DescriptorDistance(DescriptorKind::kBinary, x, y, 9), 9.0f);
+}
+
+// The bounded distance is bit-identical to the full one below the bound
+// (the KD-tree search and the quantization rely on it for unchanged results)
+// and at least the bound otherwise; 128 and 100 columns (a tail past the
+// 8-wide blocks).
+TEST(DescriptorDistance, BoundedIsExactBelowTheBoundAndAtLeastItAbove) {
+  for (int cols : {128, 100}) {
+    SyntheticDescriptorOptions o;
+    o.kind = DescriptorKind::kFloat;
+    o.cols = cols;
+    const cv::Mat rows = SyntheticDescriptors(o).Random(60, 5);
+    for (int i = 0; i + 1 < rows.rows; ++i) {
+      const uint8_t* a = rows.ptr<uint8_t>(i);
+      const uint8_t* b = rows.ptr<uint8_t>(i + 1);
+      const float exact = DescriptorDistance(DescriptorKind::kFloat, a, b, cols);
+      EXPECT_EQ(DescriptorDistanceBounded(DescriptorKind::kFloat, a, b, cols,
+                                          std::numeric_limits<float>::infinity()), exact);
+      EXPECT_EQ(DescriptorDistanceBounded(DescriptorKind::kFloat, a, b, cols, exact * 1.0001f), exact);
+      EXPECT_GE(DescriptorDistanceBounded(DescriptorKind::kFloat, a, b, cols, exact * 0.3f), exact * 0.3f);
+    }
+  }
 }
 
 }  // namespace

@@ -1,0 +1,117 @@
+// Vocabulary::Export / Vocabulary::Import (declared in vocabulary.h).
+#include <algorithm>
+#include <unordered_set>
+
+#include "slam/core/check.h"
+#include "slam/vocabulary/vocabulary.h"
+
+namespace duskmap {
+
+bool VocabularySnapshot::operator==(const VocabularySnapshot& other) const {
+  if (kind != other.kind || word_ids != other.word_ids || next_word_id != other.next_word_id ||
+      descriptors.rows != other.descriptors.rows || nodes.size() != other.nodes.size()) {
+    return false;
+  }
+  if (!descriptors.empty() &&
+      (descriptors.type() != other.descriptors.type() || descriptors.cols != other.descriptors.cols ||
+       cv::norm(descriptors, other.descriptors, cv::NORM_INF) != 0.0)) {
+    return false;
+  }
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    const VocabularyNodeWords& a = nodes[i];
+    const VocabularyNodeWords& b = other.nodes[i];
+    if (a.node != b.node || a.num_features != b.num_features || a.word_counts != b.word_counts) return false;
+  }
+  return true;
+}
+
+VocabularySnapshot Vocabulary::Export() const {
+  VocabularySnapshot s;
+  s.next_word_id = next_word_id_;
+  if (index_ != nullptr) s.kind = index_->kind();
+  for (NodeId node : inverted_.Nodes()) {
+    VocabularyNodeWords n;
+    n.node = node;
+    n.num_features = inverted_.NodeFeatureCount(node);
+    for (WordId w : inverted_.NodeWords(node)) {
+      for (const WordReference& r : inverted_.References(w)) {
+        if (r.node == node) n.word_counts.push_back({w, r.count});
+      }
+      s.word_ids.push_back(w);
+    }
+    s.nodes.push_back(std::move(n));
+  }
+  std::sort(s.word_ids.begin(), s.word_ids.end());
+  s.word_ids.erase(std::unique(s.word_ids.begin(), s.word_ids.end()), s.word_ids.end());
+  if (!s.word_ids.empty()) {
+    const int type = index_->kind() == DescriptorKind::kFloat ? CV_32F : CV_8U;
+    s.descriptors.create(static_cast<int>(s.word_ids.size()), index_->cols(), type);
+    for (size_t i = 0; i < s.word_ids.size(); ++i) {
+      const uint8_t* row = index_->Descriptor(s.word_ids[i]);
+      std::copy(row, row + index_->row_bytes(), s.descriptors.ptr<uint8_t>(static_cast<int>(i)));
+    }
+  }
+  return s;
+}
+
+void Vocabulary::Import(const VocabularySnapshot& s) {
+  SLAM_THROW_IF_NOT(InputError, num_nodes() == 0 && num_words() == 0 && next_word_id_ == 1)
+      << "Vocabulary::Import: the vocabulary is not empty (" << num_nodes() << " nodes, "
+      << num_words() << " words)";
+  const int expected_type = s.kind == DescriptorKind::kFloat ? CV_32F : CV_8U;
+  SLAM_THROW_IF_NOT(InputError, s.descriptors.rows == static_cast<int>(s.word_ids.size()))
+      << "vocabulary snapshot: " << s.descriptors.rows << " descriptor rows for "
+      << s.word_ids.size() << " words";
+  SLAM_THROW_IF_NOT(InputError, s.word_ids.empty() || s.descriptors.type() == expected_type)
+      << "vocabulary snapshot: descriptors of type " << s.descriptors.type()
+      << " do not match their kind ("
+      << (s.kind == DescriptorKind::kFloat ? "float, CV_32F" : "binary, CV_8U") << ")";
+  for (size_t i = 0; i < s.word_ids.size(); ++i) {
+    SLAM_THROW_IF_NOT(InputError, s.word_ids[i] > 0 && (i == 0 || s.word_ids[i] > s.word_ids[i - 1]))
+        << "vocabulary snapshot: word ids must be positive and strictly increasing (word "
+        << s.word_ids[i] << " at position " << i << ")";
+  }
+  SLAM_THROW_IF_NOT(InputError, s.word_ids.empty() || s.next_word_id > s.word_ids.back())
+      << "vocabulary snapshot: next word id " << s.next_word_id << " is not above the last word "
+      << s.word_ids.back();
+  SLAM_THROW_IF_NOT(InputError, s.next_word_id >= 1)
+      << "vocabulary snapshot: next word id " << s.next_word_id << " must be >= 1";
+  std::unordered_set<WordId> referenced;
+  for (size_t i = 0; i < s.nodes.size(); ++i) {
+    const VocabularyNodeWords& n = s.nodes[i];
+    SLAM_THROW_IF_NOT(InputError, i == 0 || n.node > s.nodes[i - 1].node)
+        << "vocabulary snapshot: node ids must be strictly increasing (node " << n.node << ")";
+    SLAM_THROW_IF_NOT(InputError, n.num_features >= 0)
+        << "vocabulary snapshot: node " << n.node << " has " << n.num_features << " features";
+    for (size_t k = 0; k < n.word_counts.size(); ++k) {
+      const auto& [w, count] = n.word_counts[k];
+      SLAM_THROW_IF_NOT(InputError, std::binary_search(s.word_ids.begin(), s.word_ids.end(), w))
+          << "vocabulary snapshot: node " << n.node << " references word " << w
+          << ", which is not in the snapshot";
+      SLAM_THROW_IF_NOT(InputError, count >= 1 && (k == 0 || w > n.word_counts[k - 1].first))
+          << "vocabulary snapshot: node " << n.node << " word " << w
+          << ": words must be increasing with counts >= 1 (count " << count << ")";
+      referenced.insert(w);
+    }
+  }
+  SLAM_THROW_IF_NOT(InputError, referenced.size() == s.word_ids.size())
+      << "vocabulary snapshot: " << s.word_ids.size() - referenced.size()
+      << " words are referenced by no node";
+
+  if (!s.word_ids.empty()) {
+    index_ = std::make_unique<DescriptorIndex>(options_.index, s.kind, s.descriptors.cols);
+    const cv::Mat rows = s.descriptors.isContinuous() ? s.descriptors : s.descriptors.clone();
+    for (size_t i = 0; i < s.word_ids.size(); ++i) {
+      index_->Add(s.word_ids[i], rows.ptr<uint8_t>(static_cast<int>(i)));
+    }
+    index_->Rebuild();
+  }
+  for (const VocabularyNodeWords& n : s.nodes) {
+    std::vector<WordId> words;
+    for (const auto& [w, count] : n.word_counts) words.insert(words.end(), count, w);
+    inverted_.AddNode(n.node, words, n.num_features);
+  }
+  next_word_id_ = s.next_word_id;
+}
+
+}  // namespace duskmap

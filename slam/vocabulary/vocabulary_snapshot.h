@@ -1,0 +1,36 @@
+// Everything a map stores of its vocabulary, to restore it exactly: the
+// words (ids and descriptors), the id the next new word gets, and each
+// node's references (word, occurrences) with its feature count n_j.
+// Produced by Vocabulary::Export, consumed by Vocabulary::Import.
+#pragma once
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "slam/core/graph_types.h"
+#include "slam/features/frame_features.h"
+#include "slam/vocabulary/word_types.h"
+
+namespace duskmap {
+
+struct VocabularyNodeWords {
+  NodeId node = 0;
+  int num_features = 0;  // n_j: rows of the node's frame (quantized or not)
+  // Distinct words of the node, increasing, with their occurrence counts (>= 1).
+  std::vector<std::pair<WordId, int32_t>> word_counts;
+};
+
+struct VocabularySnapshot {
+  DescriptorKind kind = DescriptorKind::kFloat;
+  std::vector<WordId> word_ids;  // strictly increasing, > 0
+  cv::Mat descriptors;           // row i: the descriptor of word_ids[i] (CV_32F or CV_8U)
+  WordId next_word_id = 1;       // > every word id: ids are never reused
+  std::vector<VocabularyNodeWords> nodes;  // increasing node ids
+
+  bool operator==(const VocabularySnapshot& other) const;
+};
+
+}  // namespace duskmap
