@@ -115,6 +115,31 @@ TEST(EstimateTransform, FailedSecondPassFailsTheRegistration) {
   EXPECT_EQ(result.node_from_query.translation, Eigen::Vector3d::Zero());
 }
 
+// The map node's 3D points rotated by 180 deg about y (all behind its camera,
+// as with a sign error in depth): PnP still finds a consistent query pose
+// (the points are in front of the query camera), but the bundle adjustment
+// has no observation in front of the map node's camera and fails.
+TEST(EstimateTransform, BundleAdjustmentFailureRejectsWithItsStatus) {
+  SyntheticPair pair = MakeSyntheticPair({});
+  const Eigen::Matrix3d flip = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  for (Eigen::Vector3f& p : pair.map_node.points_in_camera) p = (flip * p.cast<double>()).cast<float>();
+  const RegistrationResult result = Estimate(pair);
+  EXPECT_EQ(result.status, RegistrationStatus::kBundleAdjustmentFailed);
+  EXPECT_STREQ(RegistrationStatusName(result.status), "ba_failed");
+  EXPECT_GE(result.inliers_second_pass, 100);  // both PnP passes succeeded before it
+  EXPECT_FALSE(result.accepted());
+  EXPECT_EQ(result.node_from_query.translation, Eigen::Vector3d::Zero());  // no pose carried
+  EXPECT_TRUE(result.inlier_matches.empty());
+  // Without bundle adjustment the same pair is accepted with the pose that
+  // explains the rotated points: BA is the step that rejected it.
+  RegistrationOptions no_ba;
+  no_ba.bundle_adjustment.enabled = false;
+  const RegistrationResult without = Estimate(pair, no_ba);
+  ASSERT_TRUE(without.accepted()) << RegistrationStatusName(without.status);
+  ExpectPoseNear(Rigid3d(flip, Eigen::Vector3d::Zero()) * pair.node_from_query,
+                 without.node_from_query, 0.01, 0.5);
+}
+
 TEST(EstimateTransform, VarianceLimitRejects) {
   const SyntheticPair pair = MakeSyntheticPair({});  // no query depth: 10 % depth error term
   RegistrationOptions strict;
