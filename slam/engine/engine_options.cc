@@ -22,12 +22,13 @@ void LocalizationOptions::Check() const {
   SLAM_THROW_IF_NOT(ConfigError, proximity_max_paths >= 0)
       << "EngineOptions.localization.proximity_max_paths: must be >= 0, got "
       << proximity_max_paths;
-  // The reference's odometry-cache validation (spec §9.2) is not implemented
-  // yet: only the paper-era rule (0) is accepted, never silently ignored.
-  SLAM_THROW_IF_NOT(ConfigError, odometry_cache_size == 0)
-      << "EngineOptions.localization.odometry_cache_size: only 0 (paper-era rule) is "
-         "supported in this version, got "
+  SLAM_THROW_IF_NOT(ConfigError, odometry_cache_size == 0 || odometry_cache_size >= 2)
+      << "EngineOptions.localization.odometry_cache_size: must be 0 (paper-era rule) or >= 2, "
+         "got "
       << odometry_cache_size;
+  SLAM_THROW_IF_NOT(ConfigError, odometry_cache_max_error_ratio > 0.0)
+      << "EngineOptions.localization.odometry_cache_max_error_ratio: must be > 0, got "
+      << odometry_cache_max_error_ratio;
 }
 
 void EngineOptions::Check() const {
@@ -108,11 +109,19 @@ EngineOptions ReadEngineOptions(JsonFields& fields) {
   mapping.Read("proximity_max_paths", &o.mapping.proximity_max_paths);
   mapping.Read("reduce_graph", &o.mapping.reduce_graph);
   mapping.Read("short_term_memory", &o.mapping.short_term_memory);
+  std::string storage = DescriptorStorageName(o.mapping.descriptor_storage);
+  mapping.Read("descriptor_storage", &storage);
+  SLAM_THROW_IF_NOT(ConfigError, storage == "float32" || storage == "uint8")
+      << "EngineOptions.mapping.descriptor_storage: must be \"float32\" or \"uint8\", got \""
+      << storage << "\"";
+  o.mapping.descriptor_storage = ParseDescriptorStorage(storage);
   mapping.RejectUnknown();
   JsonFields localization = fields.Child("localization");
   localization.Read("proximity", &o.localization.proximity);
   localization.Read("proximity_max_paths", &o.localization.proximity_max_paths);
   localization.Read("odometry_cache_size", &o.localization.odometry_cache_size);
+  localization.Read("odometry_cache_max_error_ratio",
+                    &o.localization.odometry_cache_max_error_ratio);
   localization.RejectUnknown();
   fields.Read("random_seed", &o.random_seed);
   fields.RejectUnknown();
@@ -152,11 +161,13 @@ nlohmann::json EngineOptionsToJson(const EngineOptions& o) {
        {{"proximity", o.mapping.proximity},
         {"proximity_max_paths", o.mapping.proximity_max_paths},
         {"reduce_graph", o.mapping.reduce_graph},
-        {"short_term_memory", o.mapping.short_term_memory}}},
+        {"short_term_memory", o.mapping.short_term_memory},
+        {"descriptor_storage", DescriptorStorageName(o.mapping.descriptor_storage)}}},
       {"localization",
        {{"proximity", o.localization.proximity},
         {"proximity_max_paths", o.localization.proximity_max_paths},
-        {"odometry_cache_size", o.localization.odometry_cache_size}}},
+        {"odometry_cache_size", o.localization.odometry_cache_size},
+        {"odometry_cache_max_error_ratio", o.localization.odometry_cache_max_error_ratio}}},
       {"random_seed", o.random_seed}};
 }
 

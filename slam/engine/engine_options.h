@@ -13,6 +13,7 @@
 #include "slam/features/feature_options.h"
 #include "slam/features/matcher_options.h"
 #include "slam/graph/pose_graph_optimizer.h"
+#include "slam/map/compact_features.h"
 #include "slam/registration/transform_estimation.h"
 #include "slam/retrieval/loop_closure_detector.h"
 #include "slam/retrieval/proximity.h"
@@ -31,16 +32,22 @@ struct MappingOptions {
   int proximity_max_paths = 3;   // RGBD/ProximityMaxPaths while mapping
   bool reduce_graph = false;     // Mem/ReduceGraph (spec §8), "1-2-3-4-5-6" maps
   int short_term_memory = 10;    // Mem/STMSize: nodes are reduced when they leave it
+  // How map nodes keep float descriptors (slam/map/compact_features.h):
+  // 8-bit quantized (default, a quarter of the bytes) or as extracted.
+  DescriptorStorage descriptor_storage = DescriptorStorage::kUint8;
   void Check() const;
 };
 
 struct LocalizationOptions {
   bool proximity = true;         // RGBD/ProximityBySpace (only once re-localized)
   int proximity_max_paths = 1;   // RGBD/ProximityMaxPaths of the paper's localization runs
-  // Reference odometry-cache validation (spec §9.2, RGBD/MaxOdomCacheSize);
-  // 0 = paper-era rule: correct from the first accepted link. Only 0 is
-  // implemented so far; Check() rejects other values.
+  // Reference odometry-cache validation (spec §9.2, RGBD/MaxOdomCacheSize,
+  // slam/engine/odometry_cache.h): frames kept, >= 2; 0 = paper-era rule
+  // (correct from the first accepted link, no validation).
   int odometry_cache_size = 0;
+  // RGBD/OptimizeMaxError of the cache validation (the mapping optimiser's
+  // max_error_ratio is 0 in the paper's runs, so it has its own value).
+  double odometry_cache_max_error_ratio = 3.0;
   void Check() const;
 };
 

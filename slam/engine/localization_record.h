@@ -8,6 +8,7 @@
 
 #include "slam/core/graph_types.h"
 #include "slam/core/rigid3.h"
+#include "slam/engine/odometry_cache.h"
 #include "slam/eval/relocalization_metrics.h"
 #include "slam/registration/transform_estimation.h"
 #include "slam/retrieval/lcd_result.h"
@@ -19,6 +20,12 @@ enum class LocalizationOutcome {
   kBadSignature,          // too few features to detect loops, and no proximity candidate
   kNoCandidate,           // LCD proposed no hypothesis and proximity found none
   kRegistrationRejected,  // every candidate's transform was rejected (see registration_status)
+  // Odometry-cache validation on (spec §9.2): an accepted transform was kept
+  // in the cache but not applied, as the cache held no earlier localization.
+  kOdometryCacheWaiting,
+  // Odometry-cache validation on: every accepted transform was inconsistent
+  // with the cached odometry and localizations.
+  kOdometryCacheRejected,
 };
 
 const char* LocalizationOutcomeName(LocalizationOutcome outcome);
@@ -47,6 +54,11 @@ struct LocalizationRecord {
   SessionId matched_session = -1;  // session of matched_node
   LinkType matched_by = LinkType::kLoopClosure;  // loop closure (LCD) or proximity
   int inliers = 0;                 // of the accepted (or last tried) transform
+  // Odometry-cache validation of the last accepted transform (nullopt when
+  // the validation is off or no transform was accepted), with the largest
+  // normalised link error of the validated cache graph.
+  std::optional<CacheValidation> cache_validation;
+  double cache_max_error_ratio = 0.0;
   int num_features = 0;
   // Change of the corrected camera position at this re-localization, mm;
   // nullopt at the first one (no prior pose) and when not re-localized.

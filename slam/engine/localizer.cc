@@ -15,6 +15,8 @@ const char* LocalizationOutcomeName(LocalizationOutcome outcome) {
     case LocalizationOutcome::kBadSignature: return "bad_signature";
     case LocalizationOutcome::kNoCandidate: return "no_candidate";
     case LocalizationOutcome::kRegistrationRejected: return "registration_rejected";
+    case LocalizationOutcome::kOdometryCacheWaiting: return "odometry_cache_waiting";
+    case LocalizationOutcome::kOdometryCacheRejected: return "odometry_cache_rejected";
   }
   return "unknown";
 }
@@ -28,8 +30,19 @@ Localizer::Localizer(const Map& map, const EngineOptions& options)
   extractor_ = CreateFeatureExtractor(options_.features);
   matcher_ = CreateFeatureMatcher(options_.matcher);
   lcd_ = std::make_unique<LoopClosureDetector>(options_.LoopClosure());
-  for (const auto& [id, node] : map_.nodes()) lcd_->AddMapNode(id, node.session, node.features);
+  for (const auto& [id, node] : map_.nodes()) {
+    lcd_->AddMapNode(id, node.session, node.features.Decode());
+  }
   for (const auto& [key, link] : map_.links()) lcd_->graph().AddLink(link.from, link.to, link.type);
+  if (options_.localization.odometry_cache_size > 0) {
+    OdometryCacheOptions cache;
+    cache.size = options_.localization.odometry_cache_size;
+    cache.max_error_ratio = options_.localization.odometry_cache_max_error_ratio;
+    cache.odometry_linear_sigma_m = options_.odometry.linear_sigma_m;
+    cache.odometry_angular_sigma_rad = options_.odometry.angular_sigma_rad;
+    cache.max_iterations = options_.optimizer.max_iterations;
+    cache_ = std::make_unique<OdometryCache>(cache);
+  }
 }
 
 Localizer::~Localizer() = default;
@@ -52,6 +65,7 @@ LocalizationRecord Localizer::ProcessFrame(const RgbdFrame& frame,
   record.timestamp_s = frame.timestamp_s;
   record.num_features = static_cast<int>(features.size());
   const Rigid3d odom_from_camera = frame.odom_from_camera();
+  if (cache_) cache_->AddFrame(odom_from_camera);
 
   Stopwatch lcd_watch;
   const LcdResult lcd = lcd_->Localize(features);
@@ -65,8 +79,18 @@ LocalizationRecord Localizer::ProcessFrame(const RgbdFrame& frame,
   const Eigen::Vector3d previous_position =
       had_pose ? Eigen::Vector3d((*map_from_odom_ * odom_from_camera).translation)
                : Eigen::Vector3d::Zero();
+  bool waiting = false, cache_rejected = false;
+  std::set<NodeId> tried;
   for (const Candidate& candidate : candidates) {
-    if (TryCandidate(candidate, frame, features, &record)) break;
+    // The proximity target may be the hypothesis itself: register it once.
+    if (!tried.insert(candidate.node).second) continue;
+    const Attempt attempt = TryCandidate(candidate, frame, features, &record);
+    if (attempt == Attempt::kApplied) break;
+    if (attempt == Attempt::kWaiting) {
+      waiting = true;
+      break;
+    }
+    cache_rejected |= record.cache_validation == CacheValidation::kRejected;
   }
   if (record.relocalized) {
     record.outcome = LocalizationOutcome::kRelocalized;
@@ -74,6 +98,10 @@ LocalizationRecord Localizer::ProcessFrame(const RgbdFrame& frame,
       record.jump_mm =
           1000.0 * ((*map_from_odom_ * odom_from_camera).translation - previous_position).norm();
     }
+  } else if (waiting) {
+    record.outcome = LocalizationOutcome::kOdometryCacheWaiting;
+  } else if (cache_rejected) {
+    record.outcome = LocalizationOutcome::kOdometryCacheRejected;
   } else if (record.candidates_tried > 0) {
     record.outcome = LocalizationOutcome::kRegistrationRejected;
   } else {
@@ -116,18 +144,29 @@ std::vector<Localizer::Candidate> Localizer::ProximityCandidates(const Rigid3d& 
   return candidates;
 }
 
-bool Localizer::TryCandidate(const Candidate& candidate, const RgbdFrame& frame,
-                             const FrameFeatures& features, LocalizationRecord* record) {
+Localizer::Attempt Localizer::TryCandidate(const Candidate& candidate, const RgbdFrame& frame,
+                                           const FrameFeatures& features,
+                                           LocalizationRecord* record) {
   const MapNode& node = map_.node(candidate.node);
   Stopwatch watch;
   const RegistrationResult registration =
-      EstimateTransform(registration_, node.features, node.camera, features, frame.camera,
-                        matcher_.get());
+      EstimateTransform(registration_, node.features.Decode(), node.camera, features,
+                        frame.camera, matcher_.get());
   record->timings.registration_ms += watch.ElapsedMs();
   ++record->candidates_tried;
   record->registration_status = registration.status;
   record->inliers = registration.num_inliers;
-  if (!registration.accepted()) return false;
+  if (!registration.accepted()) return Attempt::kRejected;
+  if (cache_) {
+    const CacheValidationResult validation =
+        cache_->Validate(candidate.node, node.map_from_camera(), registration.node_from_query,
+                         registration.information);
+    record->cache_validation = validation.status;
+    record->cache_max_error_ratio =
+        std::max(validation.max_linear_ratio, validation.max_angular_ratio);
+    if (validation.status == CacheValidation::kRejected) return Attempt::kRejected;
+    if (validation.status == CacheValidation::kWaiting) return Attempt::kWaiting;
+  }
   const Rigid3d map_from_camera = node.map_from_camera() * registration.node_from_query;
   map_from_odom_ = map_from_camera * frame.odom_from_camera().Inverse();
   localized_session_ = node.session;
@@ -135,7 +174,7 @@ bool Localizer::TryCandidate(const Candidate& candidate, const RgbdFrame& frame,
   record->matched_node = candidate.node;
   record->matched_session = node.session;
   record->matched_by = candidate.type;
-  return true;
+  return Attempt::kApplied;
 }
 
 void Localizer::UpdateDistance(const RgbdFrame& frame, LocalizationRecord* record) {

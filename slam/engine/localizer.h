@@ -6,7 +6,11 @@
 // proximity). As soon as one candidate's transform is accepted the others are
 // not tested (paper era, spec §9.3), and the map->odometry correction is set
 // from that link: map_from_odom = map_from_node_camera * node_from_query *
-// odom_from_camera^-1.
+// odom_from_camera^-1. With localization.odometry_cache_size > 0 an accepted
+// transform must also pass the reference's odometry-cache validation (spec
+// §9.2, odometry_cache.h) and is applied only once the cache holds an earlier
+// localization; a transform the validation rejects lets the next candidate be
+// tried.
 //
 // The loop-closure state (vocabulary, inverted index, place graph, Bayes
 // filter) is rebuilt from the map's node descriptors in id order, so an
@@ -20,6 +24,7 @@
 #include "slam/core/rgbd_frame.h"
 #include "slam/engine/engine_options.h"
 #include "slam/engine/localization_record.h"
+#include "slam/engine/odometry_cache.h"
 #include "slam/features/feature_extractor.h"
 #include "slam/map/map.h"
 #include "slam/retrieval/loop_closure_detector.h"
@@ -46,8 +51,9 @@ class Localizer {
   };
   std::vector<Candidate> ProximityCandidates(const Rigid3d& odom_from_camera,
                                              LocalizationRecord* record);
-  bool TryCandidate(const Candidate& candidate, const RgbdFrame& frame,
-                    const FrameFeatures& features, LocalizationRecord* record);
+  enum class Attempt { kRejected, kApplied, kWaiting };
+  Attempt TryCandidate(const Candidate& candidate, const RgbdFrame& frame,
+                       const FrameFeatures& features, LocalizationRecord* record);
   void UpdateDistance(const RgbdFrame& frame, LocalizationRecord* record);
 
   const Map& map_;
@@ -57,6 +63,7 @@ class Localizer {
   std::unique_ptr<FeatureExtractor> extractor_;
   std::unique_ptr<LoopClosureDetector> lcd_;
   std::optional<Rigid3d> map_from_odom_;
+  std::unique_ptr<OdometryCache> cache_;  // only with localization.odometry_cache_size > 0
   SessionId localized_session_ = -1;  // session of the last matched node
   std::optional<Eigen::Vector3d> last_odom_position_;
   double distance_since_last_m_ = 0.0;

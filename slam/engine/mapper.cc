@@ -40,6 +40,7 @@ Mapper::Mapper(const EngineOptions& options)
   metadata.feature_parameters_json = FeatureOptionsToJson(options_.features).dump();
   metadata.engine_parameters_json = EngineOptionsToJson(options_).dump();
   metadata.descriptor_kind = extractor_->kind();
+  metadata.descriptor_storage = options_.mapping.descriptor_storage;
   map_ = Map(metadata);
 }
 
@@ -124,7 +125,8 @@ void Mapper::AddNode(const RgbdFrame& frame, FrameFeatures features, MappingFram
   result->lcd_status = lcd.status;
   result->lcd_hypothesis = lcd.accepted() ? lcd.hypothesis : 0;
 
-  node.features = std::move(features);
+  node.features = CompactFeatures::Encode(features, options_.mapping.descriptor_storage);
+  current_features_ = std::move(features);  // the new node's features as extracted
   node.word_ids = lcd_->vocabulary().inverted_index().NodeWords(node.id);
   const NodeId id = node.id;
   map_.AddNode(std::move(node));
@@ -178,8 +180,8 @@ std::optional<Link> Mapper::RegisterCandidate(NodeId current, const Candidate& c
   const MapNode& new_node = map_.node(current);
   Stopwatch watch;
   const RegistrationResult registration =
-      EstimateTransform(registration_, old_node.features, old_node.camera, new_node.features,
-                        new_node.camera, matcher_.get());
+      EstimateTransform(registration_, old_node.features.Decode(), old_node.camera,
+                        current_features_, new_node.camera, matcher_.get());
   result->timings.registration_ms += watch.ElapsedMs();
   ++result->registrations;
   if (!registration.accepted()) return std::nullopt;

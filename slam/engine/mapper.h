@@ -91,6 +91,7 @@ class Mapper {
   std::optional<SessionId> session_;
   NodeId previous_node_ = 0;  // last node of the current session (0 at a session start)
   std::string session_name_;
+  FrameFeatures current_features_;  // the current frame's features, before compaction
   std::deque<NodeId> short_term_;  // nodes of the current session not yet considered for reduction
 };
 

@@ -57,6 +57,9 @@ nlohmann::json LocalizationRecordToJson(const LocalizationRecord& r) {
       r.relocalized ? nlohmann::json(r.matched_session) : nlohmann::json(nullptr);
   j["matched_by"] = r.relocalized ? nlohmann::json(LinkTypeName(r.matched_by)) : nlohmann::json(nullptr);
   j["inliers"] = r.inliers;
+  j["cache_validation"] = r.cache_validation
+                             ? nlohmann::json(CacheValidationName(*r.cache_validation))
+                             : nlohmann::json(nullptr);
   j["features"] = r.num_features;
   j["jump_mm"] = Optional(r.jump_mm);
   j["pose"] = r.map_from_camera ? PoseToJson(*r.map_from_camera) : nlohmann::json(nullptr);

@@ -16,27 +16,25 @@ SessionId Map::AddSession(const std::string& name, const std::optional<std::stri
 }
 
 void Map::CheckDescriptors(const MapNode& node) {
-  const cv::Mat& d = node.features.descriptors;
-  SLAM_THROW_IF_NOT(InputError, static_cast<size_t>(d.rows) == node.features.size())
-      << "Map: node " << node.id << " has " << node.features.size() << " keypoints but "
-      << d.rows << " descriptor rows";
-  SLAM_THROW_IF_NOT(InputError, node.features.points_in_camera.size() == node.features.size())
-      << "Map: node " << node.id << " has " << node.features.points_in_camera.size()
-      << " 3D points for " << node.features.size() << " keypoints";
-  SLAM_THROW_IF_NOT(InputError, node.word_ids.size() <= node.features.size())
+  const CompactFeatures& f = node.features;
+  SLAM_THROW_IF_NOT(InputError, node.word_ids.size() <= f.size())
       << "Map: node " << node.id << " has more word ids than keypoints";
-  if (d.empty()) return;
+  if (f.codes().empty()) return;
+  SLAM_THROW_IF_NOT(InputError, f.storage() == metadata_.descriptor_storage)
+      << "Map: node " << node.id << " keeps its descriptors as "
+      << DescriptorStorageName(f.storage()) << ", the map as "
+      << DescriptorStorageName(metadata_.descriptor_storage);
   if (metadata_.descriptor_cv_type < 0) {
-    metadata_.descriptor_cv_type = d.type();
-    metadata_.descriptor_cols = d.cols;
-    metadata_.descriptor_kind = node.features.kind;
+    metadata_.descriptor_cv_type = f.descriptor_cv_type();
+    metadata_.descriptor_cols = f.descriptor_cols();
+    metadata_.descriptor_kind = f.kind();
   }
-  SLAM_THROW_IF_NOT(InputError, d.type() == metadata_.descriptor_cv_type &&
-                                    d.cols == metadata_.descriptor_cols &&
-                                    node.features.kind == metadata_.descriptor_kind)
-      << "Map: node " << node.id << " descriptors (type " << d.type() << ", " << d.cols
-      << " columns) differ from the map's (type " << metadata_.descriptor_cv_type << ", "
-      << metadata_.descriptor_cols << " columns)";
+  SLAM_THROW_IF_NOT(InputError, f.descriptor_cv_type() == metadata_.descriptor_cv_type &&
+                                    f.descriptor_cols() == metadata_.descriptor_cols &&
+                                    f.kind() == metadata_.descriptor_kind)
+      << "Map: node " << node.id << " descriptors (type " << f.descriptor_cv_type() << ", "
+      << f.descriptor_cols() << " columns) differ from the map's (type "
+      << metadata_.descriptor_cv_type << ", " << metadata_.descriptor_cols << " columns)";
 }
 
 void Map::AddNode(MapNode node) {

@@ -19,6 +19,7 @@
 #include "slam/core/graph_types.h"
 #include "slam/core/rigid3.h"
 #include "slam/features/frame_features.h"
+#include "slam/map/compact_features.h"
 #include "slam/vocabulary/word_types.h"
 
 namespace duskmap {
@@ -32,6 +33,9 @@ struct MapMetadata {
   DescriptorKind descriptor_kind = DescriptorKind::kFloat;
   int descriptor_cv_type = -1;  // OpenCV type of a descriptor row (CV_32F, CV_8U); -1 = no node yet
   int descriptor_cols = 0;      // elements per descriptor row
+  // How the nodes keep float descriptors (compact_features.h); every node of
+  // a map uses this storage.
+  DescriptorStorage descriptor_storage = DescriptorStorage::kFloat32;
 };
 
 struct MapSession {
@@ -50,7 +54,9 @@ struct MapNode {
   Rigid3d body_from_camera;  // camera extrinsics of the frame
   PinholeCamera camera;      // intrinsics of the frame
   std::optional<Rigid3d> truth_from_camera;  // ground truth when the dataset had it
-  FrameFeatures features;    // keypoints, descriptors, 3D points (camera frame)
+  // Keypoints, descriptors, 3D points (camera frame), kept compact;
+  // features.Decode() gives the FrameFeatures that registration uses.
+  CompactFeatures features;
   // The node's words as the vocabulary held them when the map was saved
   // (distinct, sorted; see docs/engine.md for how the vocabulary is restored).
   std::vector<WordId> word_ids;
@@ -78,8 +84,8 @@ class Map {
 
   // Adds a node. Its id must be larger than every id seen so far (ids are
   // never reused), its session must exist, and its descriptors must match
-  // the map's (the first node fixes descriptor type and width). Throws
-  // InputError otherwise.
+  // the map's (the first node fixes descriptor type and width; the storage
+  // must be metadata().descriptor_storage). Throws InputError otherwise.
   void AddNode(MapNode node);
   // Removes a node and every link touching it (graph reduction).
   void RemoveNode(NodeId id);

@@ -119,6 +119,54 @@ std::vector<Eigen::Vector3f> DecodePoints(const Blob& blob, const std::string& w
   return points;
 }
 
+Blob EncodePackedKeypoints(const std::vector<PackedKeypoint>& keypoints) {
+  Blob blob(keypoints.size() * 16);
+  for (size_t n = 0; n < keypoints.size(); ++n) {
+    const PackedKeypoint& k = keypoints[n];
+    uint8_t* out = blob.data() + 16 * n;
+    std::memcpy(out, &k.x_eighth_px, 2);
+    std::memcpy(out + 2, &k.y_eighth_px, 2);
+    std::memcpy(out + 4, &k.size_eighth_px, 2);
+    std::memcpy(out + 6, &k.angle_ninetieth_deg, 2);
+    std::memcpy(out + 8, &k.response, 4);
+    std::memcpy(out + 12, &k.octave, 4);
+  }
+  return blob;
+}
+
+std::vector<PackedKeypoint> DecodePackedKeypoints(const Blob& blob, const std::string& what) {
+  SLAM_THROW_IF_NOT(InputError, blob.size() % 16 == 0)
+      << what << ": blob of " << blob.size() << " bytes is not a multiple of 16";
+  std::vector<PackedKeypoint> keypoints(blob.size() / 16);
+  for (size_t n = 0; n < keypoints.size(); ++n) {
+    PackedKeypoint& k = keypoints[n];
+    const uint8_t* in = blob.data() + 16 * n;
+    std::memcpy(&k.x_eighth_px, in, 2);
+    std::memcpy(&k.y_eighth_px, in + 2, 2);
+    std::memcpy(&k.size_eighth_px, in + 4, 2);
+    std::memcpy(&k.angle_ninetieth_deg, in + 6, 2);
+    std::memcpy(&k.response, in + 8, 4);
+    std::memcpy(&k.octave, in + 12, 4);
+  }
+  return keypoints;
+}
+
+Blob EncodeHalfs(const std::vector<uint16_t>& values) {
+  return EncodeArray(values.data(), values.size());
+}
+
+std::vector<uint16_t> DecodeHalfs(const Blob& blob, const std::string& what) {
+  return DecodeArray<uint16_t>(blob, sizeof(uint16_t), what);
+}
+
+Blob EncodeFloats(const std::vector<float>& values) {
+  return EncodeArray(values.data(), values.size());
+}
+
+std::vector<float> DecodeFloats(const Blob& blob, const std::string& what) {
+  return DecodeArray<float>(blob, sizeof(float), what);
+}
+
 Blob EncodeWordIds(const std::vector<WordId>& ids) { return EncodeArray(ids.data(), ids.size()); }
 
 std::vector<WordId> DecodeWordIds(const Blob& blob, const std::string& what) {

@@ -12,6 +12,7 @@
 #include "slam/core/camera.h"
 #include "slam/core/graph_types.h"
 #include "slam/core/rigid3.h"
+#include "slam/map/compact_features.h"
 #include "slam/vocabulary/word_types.h"
 
 namespace duskmap {
@@ -33,6 +34,15 @@ std::vector<cv::KeyPoint> DecodeKeypoints(const Blob& blob, const std::string& w
 
 Blob EncodePoints(const std::vector<Eigen::Vector3f>& points);  // 3 floats each
 std::vector<Eigen::Vector3f> DecodePoints(const Blob& blob, const std::string& what);
+
+// Compact node features (compact_features.h): 16-byte packed keypoints,
+// three half floats per 3D point, and float arrays (row offsets and steps).
+Blob EncodePackedKeypoints(const std::vector<PackedKeypoint>& keypoints);
+std::vector<PackedKeypoint> DecodePackedKeypoints(const Blob& blob, const std::string& what);
+Blob EncodeHalfs(const std::vector<uint16_t>& values);
+std::vector<uint16_t> DecodeHalfs(const Blob& blob, const std::string& what);
+Blob EncodeFloats(const std::vector<float>& values);
+std::vector<float> DecodeFloats(const Blob& blob, const std::string& what);
 
 Blob EncodeWordIds(const std::vector<WordId>& ids);
 std::vector<WordId> DecodeWordIds(const Blob& blob, const std::string& what);

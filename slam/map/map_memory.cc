@@ -23,10 +23,8 @@ MapMemory ComputeMapMemory(const Map& map, size_t filter_bytes) {
   memory.num_nodes = map.nodes().size();
   size_t word_references = 0;
   for (const auto& [id, node] : map.nodes()) {
-    const FrameFeatures& f = node.features;
-    memory.descriptors_bytes += f.descriptors.total() * f.descriptors.elemSize();
-    memory.keypoints_points_bytes +=
-        f.keypoints.size() * sizeof(cv::KeyPoint) + f.points_in_camera.size() * sizeof(Eigen::Vector3f);
+    memory.descriptors_bytes += node.features.DescriptorMemoryBytes();
+    memory.keypoints_points_bytes += node.features.KeypointPointMemoryBytes();
     memory.words_index_bytes += node.word_ids.size() * sizeof(WordId);
     for (WordId w : node.word_ids) word_references += (w != kNoWord);
     memory.graph_bytes += NodeGraphBytes();

@@ -27,7 +27,7 @@ CREATE TABLE nodes(id INTEGER PRIMARY KEY, session INTEGER NOT NULL, frame_index
   timestamp_s REAL NOT NULL, map_pose BLOB NOT NULL, odom_pose BLOB NOT NULL,
   body_from_camera BLOB NOT NULL, camera BLOB NOT NULL, truth_pose BLOB,
   num_features INTEGER NOT NULL, keypoints BLOB NOT NULL, points BLOB NOT NULL,
-  descriptors BLOB NOT NULL, word_ids BLOB NOT NULL);
+  descriptors BLOB NOT NULL, descriptor_scales BLOB NOT NULL, word_ids BLOB NOT NULL);
 CREATE TABLE links(from_id INTEGER NOT NULL, to_id INTEGER NOT NULL, type INTEGER NOT NULL,
   transform BLOB NOT NULL, information BLOB NOT NULL, PRIMARY KEY(from_id, to_id));
 CREATE TABLE words(id INTEGER PRIMARY KEY, descriptor BLOB NOT NULL);
@@ -45,6 +45,7 @@ void WriteMeta(SqliteDatabase& db, const Map& map) {
       {"descriptor_kind", m.descriptor_kind == DescriptorKind::kBinary ? "binary" : "float"},
       {"descriptor_cv_type", std::to_string(m.descriptor_cv_type)},
       {"descriptor_cols", std::to_string(m.descriptor_cols)},
+      {"descriptor_storage", DescriptorStorageName(m.descriptor_storage)},
       {"last_node_id", std::to_string(map.last_node_id())},
       {"num_sessions", std::to_string(map.sessions().size())},
       {"num_nodes", std::to_string(map.nodes().size())},
@@ -74,7 +75,7 @@ void WriteSessions(SqliteDatabase& db, const Map& map) {
 
 void WriteNodes(SqliteDatabase& db, const Map& map) {
   SqliteStatement insert =
-      db.Prepare("INSERT INTO nodes VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+      db.Prepare("INSERT INTO nodes VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   for (const auto& [id, n] : map.nodes()) {
     insert.BindInt(1, id);
     insert.BindInt(2, n.session);
@@ -90,10 +91,13 @@ void WriteNodes(SqliteDatabase& db, const Map& map) {
       insert.BindNull(9);
     }
     insert.BindInt(10, static_cast<int64_t>(n.features.size()));
-    insert.BindBlob(11, EncodeKeypoints(n.features.keypoints));
-    insert.BindBlob(12, EncodePoints(n.features.points_in_camera));
-    insert.BindBlob(13, EncodeMatrix(n.features.descriptors));
-    insert.BindBlob(14, EncodeWordIds(n.word_ids));
+    insert.BindBlob(11, EncodePackedKeypoints(n.features.keypoints()));
+    insert.BindBlob(12, EncodeHalfs(n.features.half_points()));
+    insert.BindBlob(13, EncodeMatrix(n.features.codes()));
+    std::vector<float> scales = n.features.row_offsets();
+    scales.insert(scales.end(), n.features.row_steps().begin(), n.features.row_steps().end());
+    insert.BindBlob(14, EncodeFloats(scales));
+    insert.BindBlob(15, EncodeWordIds(n.word_ids));
     insert.Run();
   }
 }
@@ -205,7 +209,10 @@ MapMetadata ReadMetadata(const std::map<std::string, std::string>& meta, const s
   const int64_t version = MetaInt(meta, "schema_version", path);
   SLAM_THROW_IF_NOT(InputError, version == kMapSchemaVersion)
       << path << ": map schema version " << version << " is not supported (this build reads "
-      << kMapSchemaVersion << ")";
+      << kMapSchemaVersion
+      << (version < kMapSchemaVersion ? "; the map was written by an older duskmap, rebuild it"
+                                      : "")
+      << ")";
   MapMetadata m;
   m.feature_type = MetaValue(meta, "feature_type", path);
   SLAM_THROW_IF_NOT(InputError, options.expected_feature_type.empty() ||
@@ -219,6 +226,10 @@ MapMetadata ReadMetadata(const std::map<std::string, std::string>& meta, const s
                           : DescriptorKind::kFloat;
   m.descriptor_cv_type = static_cast<int>(MetaInt(meta, "descriptor_cv_type", path));
   m.descriptor_cols = static_cast<int>(MetaInt(meta, "descriptor_cols", path));
+  const std::string& storage = MetaValue(meta, "descriptor_storage", path);
+  SLAM_THROW_IF_NOT(InputError, storage == "float32" || storage == "uint8")
+      << path << ": unknown descriptor storage '" << storage << "'";
+  m.descriptor_storage = ParseDescriptorStorage(storage);
   return m;
 }
 
@@ -246,22 +257,35 @@ MapNode ReadNodeRow(const SqliteStatement& row, const MapMetadata& m, const std:
   n.camera = DecodeCamera(row.Blob(7), what + " camera");
   if (!row.IsNull(8)) n.truth_from_camera = DecodePose(row.Blob(8), what + " ground truth");
   const int64_t count = row.Int(9);
-  n.features.keypoints = DecodeKeypoints(row.Blob(10), what + " keypoints");
-  n.features.points_in_camera = DecodePoints(row.Blob(11), what + " 3D points");
-  n.features.descriptors = DecodeMatrix(row.Blob(12), static_cast<int>(count), m.descriptor_cols,
-                                        m.descriptor_cv_type, what + " descriptors");
-  n.features.kind = m.descriptor_kind;
-  n.word_ids = DecodeWordIds(row.Blob(13), what + " word ids");
-  SLAM_THROW_IF_NOT(InputError, static_cast<int64_t>(n.features.keypoints.size()) == count &&
-                                    static_cast<int64_t>(n.features.points_in_camera.size()) == count)
+  std::vector<PackedKeypoint> keypoints = DecodePackedKeypoints(row.Blob(10), what + " keypoints");
+  std::vector<uint16_t> points = DecodeHalfs(row.Blob(11), what + " 3D points");
+  SLAM_THROW_IF_NOT(InputError, static_cast<int64_t>(keypoints.size()) == count &&
+                                    static_cast<int64_t>(points.size()) == 3 * count)
       << what << ": keypoint, 3D point and feature counts differ";
+  const bool quantized = m.descriptor_kind == DescriptorKind::kFloat &&
+                         m.descriptor_storage == DescriptorStorage::kUint8;
+  const int code_type = quantized ? CV_8U : m.descriptor_cv_type;
+  cv::Mat codes = DecodeMatrix(row.Blob(12), static_cast<int>(count), m.descriptor_cols, code_type,
+                               what + " descriptors");
+  std::vector<float> scales = DecodeFloats(row.Blob(13), what + " descriptor scales");
+  const size_t expected_scales = quantized ? 2 * static_cast<size_t>(count) : 0;
+  SLAM_THROW_IF_NOT(InputError, scales.size() == expected_scales)
+      << what << ": " << scales.size() << " descriptor scales, expected " << expected_scales;
+  std::vector<float> offsets(scales.begin(), scales.begin() + expected_scales / 2);
+  std::vector<float> steps(scales.begin() + expected_scales / 2, scales.end());
+  n.features = CompactFeatures::FromParts(m.descriptor_kind, m.descriptor_storage,
+                                          m.descriptor_cv_type, std::move(codes),
+                                          std::move(offsets), std::move(steps),
+                                          std::move(keypoints), std::move(points));
+  n.word_ids = DecodeWordIds(row.Blob(14), what + " word ids");
   return n;
 }
 
 void ReadNodes(SqliteDatabase& db, const MapMetadata& m, Map* map) {
   SqliteStatement select = db.Prepare(
       "SELECT id, session, frame_index, timestamp_s, map_pose, odom_pose, body_from_camera, "
-      "camera, truth_pose, num_features, keypoints, points, descriptors, word_ids FROM nodes "
+      "camera, truth_pose, num_features, keypoints, points, descriptors, descriptor_scales, "
+      "word_ids FROM nodes "
       "ORDER BY id");
   while (select.Step()) map->AddNode(ReadNodeRow(select, m, db.path()));
 }

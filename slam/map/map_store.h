@@ -20,7 +20,7 @@
 
 namespace duskmap {
 
-inline constexpr int kMapSchemaVersion = 1;
+inline constexpr int kMapSchemaVersion = 2;  // 2: compact node features
 
 struct MapLoadOptions {
   std::string expected_feature_type;  // "" accepts any; otherwise must equal the map's

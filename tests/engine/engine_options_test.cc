@@ -44,6 +44,12 @@ TEST(EngineOptions, CheckNamesField) {
   EngineOptions o;
   o.localization.odometry_cache_size = -1;
   EXPECT_THROW(o.Check(), ConfigError);
+  o.localization.odometry_cache_size = 1;  // a cache needs two frames
+  EXPECT_THROW(o.Check(), ConfigError);
+  o.localization.odometry_cache_size = 10;
+  EXPECT_NO_THROW(o.Check());
+  o.localization.odometry_cache_max_error_ratio = 0.0;
+  EXPECT_THROW(o.Check(), ConfigError);
   o = EngineOptions();
   o.odometry.linear_sigma_m = 0.0;
   try {

@@ -74,6 +74,7 @@ std::string Outcomes(const LocalizationRun& run) {
     std::string key = LocalizationOutcomeName(r.outcome);
     key += std::string("/") + LcdStatusName(r.lcd_status);
     if (r.registration_status) key += std::string("/") + RegistrationStatusName(*r.registration_status);
+    if (r.cache_validation) key += std::string("/cache ") + CacheValidationName(*r.cache_validation);
     ++counts[key];
   }
   std::string text;
@@ -87,11 +88,11 @@ std::string FileBytes(const std::string& path) {
 }
 
 // DISABLED: the issue asks for >= 90 %; measured 2026-11-22 on these 25-frame
-// 640x480 sessions: 17/25 (68 %) re-localized, 0 wrong (18/25 = 72 % after the
-// synthetic lighting update of 06:28); the misses are LCD
-// hypotheses whose transform was rejected (5 too few inliers, 3 too few
-// matches). The six-session map re-localizes 87.5 % of 40 frames of A
-// (bench/engine_bench). Re-enable when registration/LCD tuning reaches 90 %.
+// 640x480 sessions: 17/25 (68 %) re-localized, 0 wrong, with float32 and uint8
+// node descriptors alike. Every miss is an LCD hypothesis that is the nearest
+// map node in ground truth, but 6 of the 8 frames register with no map node at
+// all (at most 16 PnP inliers, 20 needed): views with few depth points (glass,
+// far range) or low texture. docs/engine.md has the diagnosis.
 TEST_F(EngineSessions, DISABLED_SameLightSessionRelocalizes) {
   const MappingRun& map1 = MapOf("1", {"1"}, false);
   const LocalizationRun run = Localize(map1.map, "A");
@@ -100,6 +101,32 @@ TEST_F(EngineSessions, DISABLED_SameLightSessionRelocalizes) {
   EXPECT_GE(s.relocalized_pct, 90.0) << s.num_relocalized << " of " << s.num_frames << ": "
                                      << Outcomes(run);
   ExpectNoWrong(run, "map 1, session A");
+}
+
+// The reference's odometry-cache validation (spec §9.2): the first accepted
+// transform of the session only enters the cache (one re-localization alone
+// is never applied), later ones are applied when consistent; none is wrong.
+TEST_F(EngineSessions, OdometryCacheDelaysAndValidatesRelocalizations) {
+  EngineOptions options = TestOptions();
+  options.localization.odometry_cache_size = 10;
+  std::unique_ptr<SessionReader> reader = dataset_->OpenSession("A");
+  const LocalizationRun run = LocalizeSession(MapOf("1", {"1"}, false).map, *reader, options);
+  const LocalizationRecord* first_accepted = nullptr;
+  for (const LocalizationRecord& r : run.records) {
+    if (r.cache_validation) {
+      first_accepted = &r;
+      break;
+    }
+  }
+  ASSERT_NE(first_accepted, nullptr) << Outcomes(run);
+  EXPECT_EQ(first_accepted->outcome, LocalizationOutcome::kOdometryCacheWaiting);
+  EXPECT_FALSE(first_accepted->relocalized);
+  EXPECT_FALSE(first_accepted->map_from_camera.has_value());
+  EXPECT_GE(run.summary.relocalization.num_relocalized, 10) << Outcomes(run);
+  for (const LocalizationRecord& r : run.records) {
+    if (r.relocalized) EXPECT_EQ(r.cache_validation, CacheValidation::kApplied);
+  }
+  ExpectNoWrong(run, "map 1, session A, odometry cache 10");
 }
 
 TEST_F(EngineSessions, NightSessionNeedsANightMap) {

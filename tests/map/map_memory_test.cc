@@ -12,7 +12,8 @@ TEST(ComputeMapMemory, CountsComponents) {
   const MapMemory memory = ComputeMapMemory(map, /*filter_bytes=*/1234);
   EXPECT_EQ(memory.num_nodes, 10u);
   EXPECT_EQ(memory.descriptors_bytes, 10u * 40 * 64 * 4);
-  EXPECT_EQ(memory.keypoints_points_bytes, 10u * 40 * (sizeof(cv::KeyPoint) + 12));
+  // Packed keypoints (16 bytes) and half-float points (6 bytes).
+  EXPECT_EQ(memory.keypoints_points_bytes, 10u * 40 * (16 + 6));
   // Word ids (20 per node) + 6 words of 64 floats at least.
   EXPECT_GE(memory.words_index_bytes, 10u * 20 * 4 + 6 * 64 * 4);
   EXPECT_GT(memory.graph_bytes, 10u * sizeof(MapNode));
@@ -25,6 +26,12 @@ TEST(ComputeMapMemory, CountsComponents) {
 TEST(ComputeMapMemory, BinaryDescriptorsAreSmaller) {
   const MapMemory binary = ComputeMapMemory(testing::MakeTestMap(5, 40, true));
   EXPECT_EQ(binary.descriptors_bytes, 10u * 40 * 32);
+}
+
+TEST(ComputeMapMemory, QuantizedDescriptorsTakeAQuarterPlusRowScales) {
+  const MapMemory quantized =
+      ComputeMapMemory(testing::MakeTestMap(5, 40, false, 7, DescriptorStorage::kUint8));
+  EXPECT_EQ(quantized.descriptors_bytes, 10u * 40 * (64 + 2 * 4));
 }
 
 TEST(PeakResidentBytes, ReportsThisProcess) {

@@ -43,15 +43,19 @@ void ExpectNodesEqual(const MapNode& a, const MapNode& b) {
     EXPECT_TRUE(SamePose(*a.truth_from_camera, *b.truth_from_camera));
   }
   ASSERT_EQ(a.features.size(), b.features.size());
-  for (size_t i = 0; i < a.features.size(); ++i) {
-    const cv::KeyPoint &ka = a.features.keypoints[i], &kb = b.features.keypoints[i];
+  EXPECT_EQ(a.features.storage(), b.features.storage());
+  const FrameFeatures fa = a.features.Decode(), fb = b.features.Decode();
+  for (size_t i = 0; i < fa.size(); ++i) {
+    const cv::KeyPoint &ka = fa.keypoints[i], &kb = fb.keypoints[i];
     EXPECT_TRUE(ka.pt == kb.pt && ka.size == kb.size && ka.angle == kb.angle &&
                 ka.response == kb.response && ka.octave == kb.octave && ka.class_id == kb.class_id);
-    const Eigen::Vector3f &pa = a.features.points_in_camera[i], &pb = b.features.points_in_camera[i];
+    const Eigen::Vector3f &pa = fa.points_in_camera[i], &pb = fb.points_in_camera[i];
     EXPECT_TRUE(pa.allFinite() ? pa == pb : !pb.allFinite());
   }
-  EXPECT_TRUE(SameMatrix(a.features.descriptors, b.features.descriptors));
-  EXPECT_EQ(a.features.kind, b.features.kind);
+  EXPECT_TRUE(SameMatrix(fa.descriptors, fb.descriptors));
+  EXPECT_TRUE(SameMatrix(a.features.codes(), b.features.codes()));
+  EXPECT_EQ(a.features.row_steps(), b.features.row_steps());
+  EXPECT_EQ(fa.kind, fb.kind);
   EXPECT_EQ(a.word_ids, b.word_ids);
 }
 
@@ -60,6 +64,7 @@ void ExpectMapsEqual(const Map& a, const Map& b) {
   EXPECT_EQ(a.metadata().feature_parameters_json, b.metadata().feature_parameters_json);
   EXPECT_EQ(a.metadata().engine_parameters_json, b.metadata().engine_parameters_json);
   EXPECT_EQ(a.metadata().descriptor_cv_type, b.metadata().descriptor_cv_type);
+  EXPECT_EQ(a.metadata().descriptor_storage, b.metadata().descriptor_storage);
   EXPECT_EQ(a.last_node_id(), b.last_node_id());
   ASSERT_EQ(a.sessions().size(), b.sessions().size());
   for (size_t i = 0; i < a.sessions().size(); ++i) {
@@ -196,6 +201,27 @@ TEST_F(MapStoreTest, UnknownSchemaVersionIsRejected) {
   SaveMap(testing::MakeTestMap(2), path_);
   Tamper("UPDATE meta SET value = '7' WHERE key = 'schema_version'");
   ExpectLoadError("schema version 7 is not supported");
+}
+
+// A map written before compact node features (schema 1) gives a clear error.
+TEST_F(MapStoreTest, OldSchemaVersionAsksForARebuild) {
+  SaveMap(testing::MakeTestMap(2), path_);
+  Tamper("UPDATE meta SET value = '1' WHERE key = 'schema_version'");
+  ExpectLoadError("schema version 1 is not supported (this build reads 2; the map was written "
+                  "by an older duskmap, rebuild it)");
+}
+
+TEST_F(MapStoreTest, QuantizedDescriptorsRoundTrip) {
+  const Map map = testing::MakeTestMap(3, 30, false, 11, DescriptorStorage::kUint8);
+  SaveMap(map, path_);
+  const Map loaded = LoadMap(path_);
+  EXPECT_EQ(loaded.metadata().descriptor_storage, DescriptorStorage::kUint8);
+  ExpectMapsEqual(map, loaded);
+  Tamper("UPDATE nodes SET descriptor_scales = x'00000000' WHERE id = 2");
+  ExpectLoadError("node 2: 1 descriptor scales, expected 60");
+  SaveMap(map, path_);
+  Tamper("UPDATE meta SET value = 'float64' WHERE key = 'descriptor_storage'");
+  ExpectLoadError("unknown descriptor storage 'float64'");
 }
 
 TEST_F(MapStoreTest, TruncatedFileIsRejected) {

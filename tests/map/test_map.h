@@ -10,7 +10,8 @@
 namespace duskmap::testing {
 
 inline MapNode RandomNode(NodeId id, SessionId session, int num_features, int descriptor_cols,
-                          bool binary, Rng& rng) {
+                          bool binary, Rng& rng,
+                          DescriptorStorage storage = DescriptorStorage::kFloat32) {
   std::uniform_real_distribution<float> u(0.f, 300.f);
   MapNode n;
   n.id = id;
@@ -22,15 +23,17 @@ inline MapNode RandomNode(NodeId id, SessionId session, int num_features, int de
   n.body_from_camera = Rigid3d(Eigen::Quaterniond::UnitRandom(), Eigen::Vector3d(0.1, 0, 0.2));
   n.camera = PinholeCamera{320, 240, 260.0, 261.0, 159.5, 119.5};
   if (id % 2) n.truth_from_camera = n.map_from_body * n.body_from_camera;
+  FrameFeatures f;
   for (int i = 0; i < num_features; ++i) {
-    n.features.keypoints.emplace_back(u(rng), u(rng), 7.f + i % 5, u(rng), 1.f / (i + 1), i % 3, -1);
-    n.features.points_in_camera.push_back(
+    f.keypoints.emplace_back(u(rng), u(rng), 7.f + i % 5, u(rng), 1.f / (i + 1), i % 3, -1);
+    f.points_in_camera.push_back(
         i % 7 == 0 ? Eigen::Vector3f(Eigen::Vector3f::Constant(std::nanf("")))
                    : Eigen::Vector3f(Eigen::Vector3f::Random()));
   }
-  n.features.kind = binary ? DescriptorKind::kBinary : DescriptorKind::kFloat;
-  n.features.descriptors = cv::Mat(num_features, descriptor_cols, binary ? CV_8U : CV_32F);
-  cv::randu(n.features.descriptors, 0, binary ? 255 : 1);
+  f.kind = binary ? DescriptorKind::kBinary : DescriptorKind::kFloat;
+  f.descriptors = cv::Mat(num_features, descriptor_cols, binary ? CV_8U : CV_32F);
+  cv::randu(f.descriptors, 0, binary ? 255 : 1);
+  n.features = CompactFeatures::Encode(f, storage);
   for (int i = 0; i < num_features / 2; ++i) n.word_ids.push_back(i % 4 == 0 ? kNoWord : id * 100 + i);
   return n;
 }
@@ -38,20 +41,22 @@ inline MapNode RandomNode(NodeId id, SessionId session, int num_features, int de
 // Two sessions of `nodes_per_session` nodes chained by odometry links and
 // joined by one loop closure; a few words.
 inline Map MakeTestMap(int nodes_per_session = 5, int num_features = 40, bool binary = false,
-                       uint64_t seed = 7) {
+                       uint64_t seed = 7,
+                       DescriptorStorage storage = DescriptorStorage::kFloat32) {
   Rng rng(seed);
   cv::setRNGSeed(static_cast<int>(seed));
   MapMetadata metadata;
   metadata.feature_type = binary ? "brief" : "surf";
   metadata.feature_parameters_json = R"({"type":"surf","max_features":1000})";
   metadata.engine_parameters_json = R"({"mapping":{}})";
+  metadata.descriptor_storage = storage;
   Map map(metadata);
   const int cols = binary ? 32 : 64;
   NodeId id = 1;
   for (SessionId s = 0; s < 2; ++s) {
     map.AddSession(std::to_string(s + 1), s == 0 ? std::optional<std::string>("16:46") : std::nullopt);
     for (int i = 0; i < nodes_per_session; ++i, ++id) {
-      map.AddNode(RandomNode(id, s, num_features, cols, binary, rng));
+      map.AddNode(RandomNode(id, s, num_features, cols, binary, rng, storage));
       if (i > 0) {
         Link link;
         link.from = id - 1;

@@ -1,0 +1,196 @@
+#include "slam/map/compact_features.h"
+
+#include <cmath>
+#include <string>
+
+#include "slam/core/check.h"
+
+namespace duskmap {
+namespace {
+
+constexpr float kEighthsPerPx = 8.0f;
+constexpr float kMaxPackedPx = 65535.0f / kEighthsPerPx;  // 8191.875
+constexpr float kNinetiethsPerDeg = 90.0f;
+
+uint16_t PackPx(float value, const char* what, size_t index) {
+  SLAM_THROW_IF_NOT(InputError, std::isfinite(value) && value >= 0.0f && value <= kMaxPackedPx)
+      << "CompactFeatures: keypoint " << index << " " << what << " " << value
+      << " px is outside [0, " << kMaxPackedPx << "]";
+  return static_cast<uint16_t>(std::lround(value * kEighthsPerPx));
+}
+
+uint16_t HalfBits(float value) { return cv::float16_t(value).bits(); }
+float FromHalf(uint16_t bits) { return static_cast<float>(cv::float16_t::fromBits(bits)); }
+
+}  // namespace
+
+const char* DescriptorStorageName(DescriptorStorage storage) {
+  switch (storage) {
+    case DescriptorStorage::kFloat32: return "float32";
+    case DescriptorStorage::kUint8: return "uint8";
+  }
+  return "unknown";
+}
+
+DescriptorStorage ParseDescriptorStorage(const std::string& name) {
+  if (name == "float32") return DescriptorStorage::kFloat32;
+  SLAM_THROW_IF_NOT(ConfigError, name == "uint8")
+      << "descriptor storage '" << name << "' is not one of float32, uint8";
+  return DescriptorStorage::kUint8;
+}
+
+CompactFeatures CompactFeatures::Encode(const FrameFeatures& f, DescriptorStorage storage) {
+  const size_t n = f.size();
+  SLAM_THROW_IF_NOT(InputError, static_cast<size_t>(f.descriptors.rows) == n ||
+                                    (n == 0 && f.descriptors.empty()))
+      << "CompactFeatures: " << n << " keypoints but " << f.descriptors.rows << " descriptors";
+  SLAM_THROW_IF_NOT(InputError, f.points_in_camera.size() == n)
+      << "CompactFeatures: " << f.points_in_camera.size() << " 3D points for " << n
+      << " keypoints";
+  CompactFeatures c;
+  c.kind_ = f.kind;
+  c.storage_ = storage;
+  if (!f.descriptors.empty()) {
+    const int type = f.descriptors.type();
+    SLAM_THROW_IF_NOT(InputError, (f.kind == DescriptorKind::kFloat && type == CV_32F) ||
+                                      (f.kind == DescriptorKind::kBinary && type == CV_8U))
+        << "CompactFeatures: descriptor type " << type << " does not match its kind";
+    c.descriptor_cv_type_ = type;
+    if (f.kind == DescriptorKind::kFloat && storage == DescriptorStorage::kUint8) {
+      c.codes_.create(f.descriptors.rows, f.descriptors.cols, CV_8U);
+      c.row_offsets_.resize(n);
+      c.row_steps_.resize(n);
+      for (int r = 0; r < f.descriptors.rows; ++r) {
+        const float* row = f.descriptors.ptr<float>(r);
+        float lo = row[0], hi = row[0];
+        for (int k = 1; k < f.descriptors.cols; ++k) {
+          lo = std::min(lo, row[k]);
+          hi = std::max(hi, row[k]);
+        }
+        SLAM_THROW_IF_NOT(InputError, std::isfinite(lo) && std::isfinite(hi))
+            << "CompactFeatures: descriptor " << r << " is not finite";
+        const float step = (hi - lo) / 255.0f;
+        c.row_offsets_[r] = lo;
+        c.row_steps_[r] = step;
+        uint8_t* code = c.codes_.ptr<uint8_t>(r);
+        for (int k = 0; k < f.descriptors.cols; ++k) {
+          code[k] = step > 0.0f ? static_cast<uint8_t>(std::lround((row[k] - lo) / step)) : 0;
+        }
+      }
+    } else {
+      c.codes_ = f.descriptors.clone();
+    }
+  }
+  c.keypoints_.resize(n);
+  c.half_points_.resize(3 * n);
+  for (size_t i = 0; i < n; ++i) {
+    const cv::KeyPoint& k = f.keypoints[i];
+    PackedKeypoint& p = c.keypoints_[i];
+    p.x_eighth_px = PackPx(k.pt.x, "x", i);
+    p.y_eighth_px = PackPx(k.pt.y, "y", i);
+    p.size_eighth_px = PackPx(k.size, "size", i);
+    float angle = k.angle;
+    if (angle < 0.0f) {
+      p.angle_ninetieth_deg = -90;
+    } else {
+      angle = std::fmod(angle, 360.0f);
+      p.angle_ninetieth_deg = static_cast<int16_t>(std::lround(angle * kNinetiethsPerDeg) % 32400);
+    }
+    p.response = k.response;
+    p.octave = k.octave;
+    for (int a = 0; a < 3; ++a) c.half_points_[3 * i + a] = HalfBits(f.points_in_camera[i][a]);
+  }
+  return c;
+}
+
+CompactFeatures CompactFeatures::FromParts(DescriptorKind kind, DescriptorStorage storage,
+                                           int descriptor_cv_type, cv::Mat codes,
+                                           std::vector<float> row_offsets,
+                                           std::vector<float> row_steps,
+                                           std::vector<PackedKeypoint> keypoints,
+                                           std::vector<uint16_t> half_points) {
+  const size_t n = keypoints.size();
+  SLAM_THROW_IF_NOT(InputError, half_points.size() == 3 * n)
+      << "CompactFeatures: " << half_points.size() / 3 << " 3D points for " << n << " keypoints";
+  SLAM_THROW_IF_NOT(InputError, static_cast<size_t>(codes.rows) == n || (n == 0 && codes.empty()))
+      << "CompactFeatures: " << codes.rows << " descriptors for " << n << " keypoints";
+  const bool quantized = kind == DescriptorKind::kFloat && storage == DescriptorStorage::kUint8;
+  if (!codes.empty()) {
+    const int expected_code_type = quantized || kind == DescriptorKind::kBinary ? CV_8U : CV_32F;
+    SLAM_THROW_IF_NOT(InputError, codes.type() == expected_code_type &&
+                                      descriptor_cv_type ==
+                                          (kind == DescriptorKind::kBinary ? CV_8U : CV_32F))
+        << "CompactFeatures: descriptor codes of type " << codes.type()
+        << " do not match the descriptor kind and storage";
+  }
+  const size_t scales = quantized ? static_cast<size_t>(codes.rows) : 0;
+  SLAM_THROW_IF_NOT(InputError, row_offsets.size() == scales && row_steps.size() == scales)
+      << "CompactFeatures: " << row_offsets.size() << " row offsets and " << row_steps.size()
+      << " row steps for " << scales << " quantized descriptors";
+  CompactFeatures c;
+  c.kind_ = kind;
+  c.storage_ = storage;
+  c.descriptor_cv_type_ = codes.empty() ? -1 : descriptor_cv_type;
+  c.codes_ = std::move(codes);
+  c.row_offsets_ = std::move(row_offsets);
+  c.row_steps_ = std::move(row_steps);
+  c.keypoints_ = std::move(keypoints);
+  c.half_points_ = std::move(half_points);
+  return c;
+}
+
+FrameFeatures CompactFeatures::Decode() const {
+  FrameFeatures f;
+  f.kind = kind_;
+  const size_t n = size();
+  if (!codes_.empty()) {
+    if (!row_steps_.empty()) {
+      f.descriptors.create(codes_.rows, codes_.cols, CV_32F);
+      for (int r = 0; r < codes_.rows; ++r) {
+        const uint8_t* code = codes_.ptr<uint8_t>(r);
+        float* row = f.descriptors.ptr<float>(r);
+        const float lo = row_offsets_[r], step = row_steps_[r];
+        for (int k = 0; k < codes_.cols; ++k) row[k] = lo + step * code[k];
+      }
+    } else {
+      f.descriptors = codes_.clone();
+    }
+  }
+  f.keypoints.resize(n);
+  f.points_in_camera.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    const PackedKeypoint& p = keypoints_[i];
+    const float angle =
+        p.angle_ninetieth_deg < 0 ? -1.0f : p.angle_ninetieth_deg / kNinetiethsPerDeg;
+    f.keypoints[i] = cv::KeyPoint(p.x_eighth_px / kEighthsPerPx, p.y_eighth_px / kEighthsPerPx,
+                                  p.size_eighth_px / kEighthsPerPx, angle, p.response, p.octave,
+                                  -1);
+    f.points_in_camera[i] = Eigen::Vector3f(FromHalf(half_points_[3 * i]),
+                                            FromHalf(half_points_[3 * i + 1]),
+                                            FromHalf(half_points_[3 * i + 2]));
+  }
+  return f;
+}
+
+size_t CompactFeatures::DescriptorBytes() const {
+  if (codes_.empty()) return 0;
+  return static_cast<size_t>(codes_.cols) * (descriptor_cv_type_ == CV_32F ? 4 : 1);
+}
+
+bool CompactFeatures::HasPoint(size_t i) const {
+  for (int a = 0; a < 3; ++a) {
+    if (!std::isfinite(FromHalf(half_points_[3 * i + a]))) return false;
+  }
+  return true;
+}
+
+size_t CompactFeatures::DescriptorMemoryBytes() const {
+  return codes_.total() * codes_.elemSize() +
+         (row_offsets_.size() + row_steps_.size()) * sizeof(float);
+}
+
+size_t CompactFeatures::KeypointPointMemoryBytes() const {
+  return keypoints_.size() * sizeof(PackedKeypoint) + half_points_.size() * sizeof(uint16_t);
+}
+
+}  // namespace duskmap
