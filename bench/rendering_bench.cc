@@ -1,8 +1,15 @@
 // Rendering throughput of the synthetic apartment at 640x480 once a session's
 // lighting is prepared (target: >= 20 frames/s on one core), the cost of the
-// lighting preparation, and the full frame path (render + camera + depth).
+// lighting preparation, the frame path (render + camera + depth) and the
+// whole per-frame generation cost including the PNG files the dataset holds.
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+
 #include <benchmark/benchmark.h>
 
+#include "slam/io/tum_writer.h"
 #include "slam/synthetic/apartment.h"
 #include "slam/synthetic/generator_config.h"
 #include "slam/synthetic/route.h"
@@ -46,6 +53,31 @@ void BM_CaptureFrame640x480(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_CaptureFrame640x480)->Unit(benchmark::kMillisecond);
+
+// Capture plus writing the colour and depth PNGs (what `duskmap generate`
+// does per frame), into a scratch folder under the system temp directory.
+void BM_CaptureAndWriteFrame640x480(benchmark::State& state) {
+  Fixture& f = Shared();
+  SessionSimulator simulator(f.config, f.scene, 19.7, 2);
+  const std::string folder =
+      (std::filesystem::temp_directory_path() / ("duskmap_rendering_bench_" + std::to_string(::getpid()))).string();
+  std::filesystem::remove_all(folder);
+  TumCalibration calibration;
+  calibration.camera = f.config.camera.Intrinsics();
+  calibration.depth_scale = 1000.0;
+  {
+    TumSessionWriter writer(folder, calibration);
+    size_t k = 0;
+    for (auto _ : state) {
+      RgbdFrame frame = simulator.Capture(f.route[k % f.route.size()].world_from_camera);
+      frame.timestamp_s = static_cast<double>(k++);
+      writer.Write(frame);
+    }
+  }
+  std::filesystem::remove_all(folder);
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_CaptureAndWriteFrame640x480)->Unit(benchmark::kMillisecond);
 
 void BM_PrepareLighting(benchmark::State& state) {
   Fixture& f = Shared();

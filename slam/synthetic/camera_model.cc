@@ -44,7 +44,7 @@ void CameraModelOptions::Check() const {
 }
 
 CameraModel::CameraModel(const CameraModelOptions& options, uint64_t seed)
-    : options_(options), rng_(seed | 1) {
+    : options_(options), noise_(seed) {
   options_.Check();
   tone_lut_.resize(kLutSize);
   for (int i = 0; i < kLutSize; ++i) {
@@ -106,26 +106,35 @@ void CameraModel::Settle(const cv::Mat& radiance, int iterations) {
 
 cv::Mat CameraModel::Capture(const cv::Mat& radiance) {
   SLAM_CHECK(radiance.type() == CV_32FC3);
-  cv::Mat linear;
-  const cv::Scalar scale(state_.exposure * state_.wb_gains[0], state_.exposure * state_.wb_gains[1],
-                         state_.exposure * state_.wb_gains[2]);
-  cv::multiply(radiance, scale, linear);
-  if (options_.blur_sigma_px > 0.0) cv::GaussianBlur(linear, linear, cv::Size(0, 0), options_.blur_sigma_px);
-  cv::Mat noise(linear.size(), CV_32FC3);
-  rng_.fill(noise, cv::RNG::NORMAL, 0.0, 1.0);
+  // Blur is linear, so blurring the radiance and scaling afterwards equals
+  // scaling then blurring; the scale is folded into the per-pixel loop.
+  const cv::Mat* linear = &radiance;
+  if (options_.blur_sigma_px > 0.0) {
+    cv::GaussianBlur(radiance, blurred_, cv::Size(0, 0), options_.blur_sigma_px);
+    linear = &blurred_;
+  }
+  const float scale[3] = {static_cast<float>(state_.exposure * state_.wb_gains[0]),
+                          static_cast<float>(state_.exposure * state_.wb_gains[1]),
+                          static_cast<float>(state_.exposure * state_.wb_gains[2])};
   const float shot = static_cast<float>(state_.gain / options_.photons_at_white);
   const float read = static_cast<float>(options_.read_noise * state_.gain);
   const float read2 = read * read;
-  cv::Mat out(linear.size(), CV_8UC3);
-  for (int r = 0; r < linear.rows; ++r) {
-    const float* in = linear.ptr<float>(r);
-    const float* nz = noise.ptr<float>(r);
+  const float lut_scale = static_cast<float>(kLutSize - 1);
+  const int values = linear->cols * 3;
+  noise_row_.resize(values);
+  cv::Mat out(linear->size(), CV_8UC3);
+  for (int r = 0; r < linear->rows; ++r) {
+    const float* in = linear->ptr<float>(r);
+    float* nz = noise_row_.data();
+    noise_.FillNormal(nz, values);
     uint8_t* o = out.ptr<uint8_t>(r);
-    for (int i = 0; i < linear.cols * 3; ++i) {
-      const float x = std::min(in[i], 1.0f);
-      const float v = x + std::sqrt(shot * x + read2) * nz[i];
-      const int index = static_cast<int>(std::clamp(v, 0.0f, 1.0f) * (kLutSize - 1) + 0.5f);
-      o[i] = tone_lut_[index];
+    for (int i = 0; i < values; i += 3) {
+      for (int k = 0; k < 3; ++k) {
+        const float x = std::min(in[i + k] * scale[k], 1.0f);
+        const float v = x + std::sqrt(shot * x + read2) * nz[i + k];
+        const int index = static_cast<int>(std::clamp(v, 0.0f, 1.0f) * lut_scale + 0.5f);
+        o[i + k] = tone_lut_[index];
+      }
     }
   }
   Meter(radiance);

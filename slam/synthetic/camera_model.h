@@ -11,6 +11,7 @@
 #include <opencv2/core.hpp>
 
 #include "slam/core/camera.h"
+#include "slam/synthetic/sensor_noise.h"
 
 namespace duskmap {
 
@@ -66,8 +67,10 @@ class CameraModel {
 
   CameraModelOptions options_;
   CameraState state_;
-  cv::RNG rng_;
+  SensorNoise noise_;
   std::vector<uint8_t> tone_lut_;  // 4096 entries over [0, 1]
+  cv::Mat blurred_;                // scratch: blurred radiance, reused across frames
+  std::vector<float> noise_row_;   // scratch: one row of normal samples
 };
 
 }  // namespace duskmap

@@ -1,6 +1,8 @@
 #include "slam/synthetic/depth_sensor.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "slam/core/check.h"
 
@@ -20,40 +22,50 @@ void DepthSensorOptions::Check() const {
 }
 
 cv::Mat SimulateDepth(const DepthSensorOptions& options, const Scene& scene, const RenderedView& view,
-                      cv::RNG& rng) {
+                      SensorNoise& noise) {
   const cv::Mat& z = view.depth_m;
   cv::Mat out(z.size(), CV_32FC1, cv::Scalar(0.0f));
-  cv::Mat noise(z.size(), CV_32FC1), uniform(z.size(), CV_32FC1);
-  rng.fill(noise, cv::RNG::NORMAL, 0.0, 1.0);
-  rng.fill(uniform, cv::RNG::UNIFORM, 0.0, 1.0);
+  std::vector<float> normal(z.cols), uniform(z.cols);
+  std::vector<uint8_t> glass(scene.quads.size());
+  for (size_t i = 0; i < scene.quads.size(); ++i) glass[i] = scene.quads[i].emission == Emission::kSky;
+  const float min_range = static_cast<float>(options.min_range_m);
+  const float max_range = static_cast<float>(options.max_range_m);
+  const float min_cos = static_cast<float>(options.min_cos_incidence);
+  const float edge_jump = static_cast<float>(options.edge_jump_m);
+  const float dropout = static_cast<float>(options.dropout_probability);
+  // The uniform sample decides both dropouts: below `dropout` always, below
+  // `edge_dropout` when the pixel is at a depth discontinuity.
+  const float edge_dropout = static_cast<float>(options.dropout_probability +
+                                                options.edge_dropout_probability * (1.0 - options.dropout_probability));
   for (int r = 0; r < z.rows; ++r) {
-    const float* zr = z.ptr<float>(r);
+    noise.FillNormal(normal.data(), z.cols);
+    noise.FillUniform(uniform.data(), z.cols);
+    const float* rows[3] = {z.ptr<float>(std::max(r - 1, 0)), z.ptr<float>(r), z.ptr<float>(std::min(r + 1, z.rows - 1))};
+    const float* zr = rows[1];
     const int* id = view.surface_id.ptr<int>(r);
     const float* cos_r = view.cos_incidence.ptr<float>(r);
-    const float* nz = noise.ptr<float>(r);
-    const float* un = uniform.ptr<float>(r);
     float* o = out.ptr<float>(r);
     for (int c = 0; c < z.cols; ++c) {
-      const double d = zr[c];
-      if (id[c] < 0 || scene.quads[id[c]].emission == Emission::kSky) continue;  // glass
-      if (d < options.min_range_m || d > options.max_range_m) continue;
-      if (cos_r[c] < options.min_cos_incidence) continue;
-      if (un[c] < options.dropout_probability) continue;
-      bool edge = false;
-      for (int dr = -1; dr <= 1 && !edge; ++dr) {
-        for (int dc = -1; dc <= 1; ++dc) {
-          const int rr = r + dr, cc = c + dc;
-          if (rr < 0 || cc < 0 || rr >= z.rows || cc >= z.cols) continue;
-          if (std::abs(z.at<float>(rr, cc) - d) > options.edge_jump_m) {
-            edge = true;
-            break;
-          }
+      const float d = zr[c];
+      if (id[c] < 0 || glass[id[c]]) continue;
+      if (d < min_range || d > max_range) continue;
+      if (cos_r[c] < min_cos) continue;
+      const float u = uniform[c];
+      if (u < dropout) continue;
+      if (u < edge_dropout) {
+        // Edge test over the 3x3 neighbourhood (clamped at the border, where
+        // the pixel itself stands in for the missing neighbour).
+        const int c0 = std::max(c - 1, 0), c1 = std::min(c + 1, z.cols - 1);
+        bool edge = false;
+        for (int k = 0; k < 3 && !edge; ++k) {
+          edge = std::abs(rows[k][c0] - d) > edge_jump || std::abs(rows[k][c] - d) > edge_jump ||
+                 std::abs(rows[k][c1] - d) > edge_jump;
         }
+        if (edge) continue;
       }
-      // Reuse the uniform sample, rescaled, for the edge decision.
-      if (edge && un[c] < options.dropout_probability + options.edge_dropout_probability * (1.0 - options.dropout_probability)) continue;
-      const double sigma = options.noise_base_m + options.noise_quadratic * (d - 0.4) * (d - 0.4);
-      o[c] = static_cast<float>(d + sigma * nz[c]);
+      const float e = d - 0.4f;
+      const double sigma = options.noise_base_m + options.noise_quadratic * e * e;
+      o[c] = static_cast<float>(d + sigma * normal[c]);
     }
   }
   return out;

@@ -10,6 +10,7 @@
 #include <opencv2/core.hpp>
 
 #include "slam/synthetic/renderer.h"
+#include "slam/synthetic/sensor_noise.h"
 #include "slam/synthetic/scene.h"
 
 namespace duskmap {
@@ -29,6 +30,6 @@ struct DepthSensorOptions {
 
 // Depth image (metres, 0 = none) of a rendered view.
 cv::Mat SimulateDepth(const DepthSensorOptions& options, const Scene& scene, const RenderedView& view,
-                      cv::RNG& rng);
+                      SensorNoise& noise);
 
 }  // namespace duskmap

@@ -101,50 +101,67 @@ void Renderer::Render(const std::vector<cv::Mat>& radiance, const Rigid3d& world
   SLAM_CHECK(radiance.size() == scene_.quads.size());
   const Rigid3d camera_from_world = world_from_camera.Inverse();
   const cv::Size size(camera_.width, camera_.height);
-  cv::Mat inv_depth(size, CV_32FC1, cv::Scalar(0.0f));
+  // The depth pass writes inverse depth into depth_m (reused across frames);
+  // the shading pass turns it into depth in place.
+  view->depth_m.create(size, CV_32FC1);
+  view->depth_m.setTo(cv::Scalar(0.0f));
   view->surface_id.create(size, CV_32SC1);
   view->surface_id.setTo(cv::Scalar(-1));
   std::vector<QuadSetup> setups(scene_.quads.size());
   for (size_t i = 0; i < scene_.quads.size(); ++i) {
     if (SetupQuad(static_cast<int>(i), camera_from_world, &setups[i])) {
-      RasterizeDepth(setups[i], &inv_depth, &view->surface_id);
+      RasterizeDepth(setups[i], &view->depth_m, &view->surface_id);
     }
   }
+  // Texture access without going through cv::Mat per pixel.
+  struct Texture {
+    const uint8_t* data;
+    size_t step;
+    int max_x, max_y;
+  };
+  std::vector<Texture> textures(radiance.size());
+  for (size_t i = 0; i < radiance.size(); ++i) {
+    SLAM_CHECK(radiance[i].type() == CV_32FC3 && !radiance[i].empty());
+    textures[i] = {radiance[i].data, radiance[i].step[0], radiance[i].cols - 1, radiance[i].rows - 1};
+  }
   view->radiance.create(size, CV_32FC3);
-  view->depth_m.create(size, CV_32FC1);
   view->cos_incidence.create(size, CV_32FC1);
+  const double inv_fx = 1.0 / camera_.fx;
   for (int row = 0; row < size.height; ++row) {
     const int* id_row = view->surface_id.ptr<int>(row);
-    const float* inv_row = inv_depth.ptr<float>(row);
-    cv::Vec3f* out = view->radiance.ptr<cv::Vec3f>(row);
-    float* depth_out = view->depth_m.ptr<float>(row);
+    float* depth_row = view->depth_m.ptr<float>(row);
+    float* out = view->radiance.ptr<float>(row);
     float* cos_out = view->cos_incidence.ptr<float>(row);
     const double dy = (row - camera_.cy) / camera_.fy;
-    for (int col = 0; col < size.width; ++col) {
+    const double ray_base = dy * dy + 1.0;
+    for (int col = 0; col < size.width; ++col, out += 3) {
       const int id = id_row[col];
       if (id < 0) {
-        out[col] = cv::Vec3f(0, 0, 0);
-        depth_out[col] = 0.0f;
+        out[0] = out[1] = out[2] = 0.0f;
+        depth_row[col] = 0.0f;
         cos_out[col] = 0.0f;
         continue;
       }
       const QuadSetup& s = setups[id];
-      const cv::Mat& texture = radiance[id];
-      const double z = 1.0 / inv_row[col];
+      const Texture& t = textures[id];
+      const double z = 1.0 / depth_row[col];
       const double x = (s.sa * col + s.sb * row + s.sc) * z + s.sd;
       const double y = (s.ta * col + s.tb * row + s.tc) * z + s.td;
-      const int x0 = std::clamp(static_cast<int>(std::floor(x)), 0, texture.cols - 1);
-      const int y0 = std::clamp(static_cast<int>(std::floor(y)), 0, texture.rows - 1);
-      const int x1 = std::min(x0 + 1, texture.cols - 1), y1 = std::min(y0 + 1, texture.rows - 1);
+      const int x0 = std::clamp(static_cast<int>(std::floor(x)), 0, t.max_x);
+      const int y0 = std::clamp(static_cast<int>(std::floor(y)), 0, t.max_y);
+      const int x1 = std::min(x0 + 1, t.max_x), y1 = std::min(y0 + 1, t.max_y);
       const float fx = static_cast<float>(std::clamp(x - x0, 0.0, 1.0));
       const float fy = static_cast<float>(std::clamp(y - y0, 0.0, 1.0));
-      const cv::Vec3f* r0 = texture.ptr<cv::Vec3f>(y0);
-      const cv::Vec3f* r1 = texture.ptr<cv::Vec3f>(y1);
-      out[col] = (r0[x0] * (1 - fx) + r0[x1] * fx) * (1 - fy) + (r1[x0] * (1 - fx) + r1[x1] * fx) * fy;
-      depth_out[col] = static_cast<float>(z);
-      const double dx = (col - camera_.cx) / camera_.fx;
+      const float* r0 = reinterpret_cast<const float*>(t.data + y0 * t.step);
+      const float* r1 = reinterpret_cast<const float*>(t.data + y1 * t.step);
+      const float w00 = (1 - fx) * (1 - fy), w01 = fx * (1 - fy), w10 = (1 - fx) * fy, w11 = fx * fy;
+      for (int k = 0; k < 3; ++k) {
+        out[k] = r0[3 * x0 + k] * w00 + r0[3 * x1 + k] * w01 + r1[3 * x0 + k] * w10 + r1[3 * x1 + k] * w11;
+      }
+      depth_row[col] = static_cast<float>(z);
+      const double dx = (col - camera_.cx) * inv_fx;
       const double n_dot_d = s.cos_a * col + s.cos_b * row + s.cos_c;
-      cos_out[col] = static_cast<float>(std::abs(n_dot_d) / std::sqrt(dx * dx + dy * dy + 1.0));
+      cos_out[col] = static_cast<float>(std::abs(n_dot_d) / std::sqrt(dx * dx + ray_base));
     }
   }
 }

@@ -12,7 +12,7 @@ SessionSimulator::SessionSimulator(const GeneratorConfig& config, const Scene& s
       radiance_(PrepareRadiance(scene, lighting_, config.lighting)),
       renderer_(scene, config.camera.Intrinsics()),
       camera_(config.camera, DeriveSeed(seed, 1)),
-      depth_rng_(DeriveSeed(seed, 2) | 1) {}
+      depth_noise_(DeriveSeed(seed, 2)) {}
 
 void SessionSimulator::Settle(const Rigid3d& world_from_camera, int iterations) {
   renderer_.Render(radiance_, world_from_camera, &view_);
@@ -24,7 +24,7 @@ RgbdFrame SessionSimulator::Capture(const Rigid3d& world_from_camera) {
   RgbdFrame frame;
   frame.camera = renderer_.camera();
   frame.bgr = camera_.Capture(view_.radiance);
-  frame.depth_m = SimulateDepth(config_.depth, scene_, view_, depth_rng_);
+  frame.depth_m = SimulateDepth(config_.depth, scene_, view_, depth_noise_);
   frame.world_from_camera = world_from_camera;
   return frame;
 }

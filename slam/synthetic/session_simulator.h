@@ -42,7 +42,7 @@ class SessionSimulator {
   std::vector<cv::Mat> radiance_;
   Renderer renderer_;
   CameraModel camera_;
-  cv::RNG depth_rng_;
+  SensorNoise depth_noise_;
   RenderedView view_;
 };
 

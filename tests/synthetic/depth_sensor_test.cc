@@ -26,8 +26,8 @@ TEST(SimulateDepth, NoDepthThroughGlassBeyondRangeOrAtGrazingAngles) {
   // Living room, facing the west windows from 3 m away.
   renderer.Render(radiance, Rigid3d(CameraRotationFromYawPitchRoll(M_PI, 0.0, 0.0), Eigen::Vector3d(3.0, 2.3, 1.5)), &view);
   DepthSensorOptions options;
-  cv::RNG rng(1);
-  const cv::Mat depth = SimulateDepth(options, scene, view, rng);
+  SensorNoise noise(1);
+  const cv::Mat depth = SimulateDepth(options, scene, view, noise);
   int glass = 0, valid = 0;
   double max_error = 0.0;
   for (int v = 0; v < depth.rows; ++v) {
