@@ -78,6 +78,17 @@ NodeQuantization LoopClosureDetector::AddMapNode(NodeId node, SessionId session,
   return q;
 }
 
+void LoopClosureDetector::ImportMap(const VocabularySnapshot& snapshot,
+                                    const std::function<SessionId(NodeId)>& session_of) {
+  SLAM_THROW_IF_NOT(InputError, graph_.size() == 0 && short_term_.empty())
+      << "LoopClosureDetector::ImportMap: the detector already holds " << graph_.size() << " nodes";
+  vocabulary_.Import(snapshot);
+  for (const VocabularyNodeWords& n : snapshot.nodes) {
+    graph_.AddNode(n.node, session_of(n.node));
+    filter_.AddPlace(n.node);
+  }
+}
+
 void LoopClosureDetector::StartNewSession() {
   for (NodeId node : short_term_) filter_.AddPlace(node);
   short_term_.clear();

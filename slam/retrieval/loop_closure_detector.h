@@ -61,6 +61,12 @@ class LoopClosureDetector {
   // Loads a node of an existing map straight into the candidate places
   // (no detection). Its links are added through graph().
   NodeQuantization AddMapNode(NodeId node, SessionId session, const FrameFeatures& features);
+  // Loads a stored map's vocabulary exactly (words, ids, references; see
+  // Vocabulary::Import) instead of re-quantizing node descriptors, and makes
+  // every snapshot node a candidate place of session `session_of(node)`. The
+  // detector must be empty. Links are added through graph().
+  void ImportMap(const VocabularySnapshot& snapshot,
+                 const std::function<SessionId(NodeId)>& session_of);
 
   // Mapping: a new session starts; the STM becomes candidates and the filter
   // is reset (reference: triggerNewMap, spec §10).

@@ -5,6 +5,12 @@
 #include <functional>
 #include <numeric>
 
+#include <new>
+
+#ifdef __linux__
+#include <sys/mman.h>
+#endif
+
 #include "slam/core/check.h"
 
 namespace duskmap {
@@ -18,6 +24,22 @@ bool Closer(const KdNeighbour& a, const KdNeighbour& b) {
 }
 
 }  // namespace
+
+void* AllocateHugePageAdvised(size_t bytes) {
+  constexpr size_t kHugePage = size_t{2} << 20;
+  if (bytes < 2 * kHugePage) {
+    void* p = std::malloc(bytes == 0 ? 1 : bytes);
+    if (p == nullptr) throw std::bad_alloc();
+    return p;
+  }
+  const size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
+  void* p = std::aligned_alloc(kHugePage, rounded);
+  if (p == nullptr) throw std::bad_alloc();
+#ifdef __linux__
+  madvise(p, rounded, MADV_HUGEPAGE);  // advice only: failure leaves ordinary pages
+#endif
+  return p;
+}
 
 KdForest::KdForest(const KdForestOptions& options, DescriptorKind kind, int cols)
     : options_(options), kind_(kind), cols_(cols),
@@ -112,7 +134,7 @@ void KdForest::Rebuild() {
   live.reserve(slot_.size());
   for (const auto& [id, p] : slot_) live.push_back({id, p});
   std::sort(live.begin(), live.end());
-  std::vector<uint8_t> data;
+  std::vector<uint8_t, HugePageAllocator<uint8_t>> data;
   std::vector<WordId> ids;
   data.reserve(live.size() * row_bytes_);
   ids.reserve(live.size());
@@ -160,7 +182,7 @@ void KdForest::RenumberByLeaves() {
   for (uint32_t& r : renamed) {
     if (r == kUnset) r = next++;  // not in the first tree (cannot happen after a build)
   }
-  std::vector<uint8_t> data(data_.size());
+  std::vector<uint8_t, HugePageAllocator<uint8_t>> data(data_.size());
   std::vector<WordId> ids(n);
   for (uint32_t p = 0; p < n; ++p) {
     std::copy_n(Data(p), row_bytes_, &data[static_cast<size_t>(renamed[p]) * row_bytes_]);

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstdlib>
 #include <unordered_map>
 #include <vector>
 
@@ -18,6 +19,32 @@
 #include "slam/vocabulary/word_types.h"
 
 namespace duskmap {
+
+// Allocator for the forest's large arrays: blocks of 4 MiB and more are
+// 2 MiB-aligned and, on Linux, advised to be backed by transparent huge
+// pages before they are first touched. The rows are read at random, so with
+// 4 KiB pages nearly every row costs a TLB miss as well as a cache miss.
+template <typename T>
+struct HugePageAllocator {
+  using value_type = T;
+  HugePageAllocator() = default;
+  template <typename U>
+  HugePageAllocator(const HugePageAllocator<U>&) {}
+  T* allocate(size_t n);
+  void deallocate(T* p, size_t) { std::free(p); }
+  template <typename U>
+  bool operator==(const HugePageAllocator<U>&) const { return true; }
+  template <typename U>
+  bool operator!=(const HugePageAllocator<U>&) const { return false; }
+};
+
+// Allocates `bytes` (huge-page advised when large); throws std::bad_alloc.
+void* AllocateHugePageAdvised(size_t bytes);
+
+template <typename T>
+T* HugePageAllocator<T>::allocate(size_t n) {
+  return static_cast<T*>(AllocateHugePageAdvised(n * sizeof(T)));
+}
 
 struct KdForestOptions {
   int trees = 4;                 // randomized trees (reference: 4)
@@ -93,11 +120,11 @@ class KdForest {
   int dims_;
   size_t row_bytes_;
   Rng rng_;
-  std::vector<uint8_t> data_;           // rows by point index (removed rows until a rebuild)
+  std::vector<uint8_t, HugePageAllocator<uint8_t>> data_;  // rows by point index (removed rows until a rebuild)
   std::vector<WordId> ids_;             // point -> id (kNoWord once removed)
   std::unordered_map<WordId, uint32_t> slot_;  // id -> point
-  std::vector<Node> nodes_;
-  std::vector<LeafEntry> pool_;         // leaf entry blocks (see Node)
+  std::vector<Node, HugePageAllocator<Node>> nodes_;
+  std::vector<LeafEntry, HugePageAllocator<LeafEntry>> pool_;  // leaf entry blocks (see Node)
   std::vector<int32_t> roots_;
   size_t rows_at_build_ = 0;
   int rebuilds_ = 0;

@@ -176,6 +176,33 @@ TEST_P(LcdTest, ASingleSpuriousFrameDuringARevisitDoesNotMoveTheLoop) {
   EXPECT_GE(accepted_after, 2);
 }
 
+// A map's vocabulary exported and imported (instead of re-quantizing the
+// node descriptors) localizes exactly like the original detector (search
+// made exhaustive so that the freshly built trees cannot differ in lookups).
+TEST_P(LcdTest, ImportedMapLocalizesLikeTheOriginal) {
+  LoopClosureOptions options;
+  options.vocabulary.index.checks = 1000000;
+  LoopClosureDetector original(options);
+  for (int k = 0; k < 12; ++k) {
+    original.AddMapNode(k + 1, k < 6 ? 0 : 1, Place(k, k));
+    if (k > 0) original.graph().AddLink(k, k + 1, LinkType::kOdometry);
+  }
+  LoopClosureDetector restored(options);
+  restored.ImportMap(original.vocabulary().Export(), [](NodeId n) { return n <= 6 ? 0 : 1; });
+  for (int k = 1; k < 12; ++k) restored.graph().AddLink(k, k + 1, LinkType::kOdometry);
+  EXPECT_EQ(restored.vocabulary().num_words(), original.vocabulary().num_words());
+  EXPECT_EQ(restored.filter().num_places(), 12u);
+  for (int k = 4; k < 8; ++k) {
+    const LcdResult a = original.Localize(Place(k, 500 + k));
+    const LcdResult b = restored.Localize(Place(k, 500 + k));
+    EXPECT_EQ(a.status, b.status);
+    EXPECT_EQ(a.hypothesis, b.hypothesis);
+    EXPECT_DOUBLE_EQ(a.score, b.score);
+    EXPECT_EQ(a.num_words, b.num_words);
+  }
+  EXPECT_THROW(restored.ImportMap(original.vocabulary().Export(), [](NodeId) { return 0; }), InputError);
+}
+
 TEST_P(LcdTest, BadFramesEmptyMapsAndRemovals) {
   LoopClosureDetector lcd{LoopClosureOptions()};
   // Empty map.
