@@ -193,6 +193,8 @@ void AddLivingRoom(ApartmentBuilder& b, const ApartmentOptions& options) {
   b.AddVertical({0.01, 2.3}, {1, 0}, 0.5, 1.2, 1.8, room, TextureKind::kPoster, {});
   b.AddVertical({5.99, 4.1}, {-1, 0}, 0.7, 1.1, 2.0, room, TextureKind::kPoster, {});
   b.AddVertical({5.99, 0.6}, {-1, 0}, 0.8, 1.2, 1.8, room, TextureKind::kPicture, {});
+  b.AddVertical({3.6, 4.59}, {0, -1}, 0.7, 1.2, 1.9, room, TextureKind::kPoster, {});
+  b.AddVertical({1.0, 0.01}, {0, 1}, 0.6, 1.2, 1.7, room, TextureKind::kPicture, {});
   const int floor_lamp = AddLamp(s, "living floor lamp", {5.6, 4.2, 1.6}, room,
                                  120.0 * options.lamp_intensity_scale, options.living_lamp_on_from);
   b.AddBox({5.58, 4.18, 0.0}, {5.62, 4.22, 1.45}, room, TextureKind::kWood, {0.05f, 0.05f, 0.05f});
@@ -219,6 +221,8 @@ void AddKitchen(ApartmentBuilder& b, const ApartmentOptions& options) {
   b.AddTable(7.3, 8.5, 1.6, 2.6, 0.76, room, {0.2f, 0.35f, 0.5f});
   b.AddVertical({8.75, 4.59}, {0, -1}, 0.9, 1.2, 1.9, room, TextureKind::kPoster, {});
   b.AddVertical({9.99, 4.45}, {-1, 0}, 0.25, 1.0, 1.4, room, TextureKind::kPicture, {});
+  b.AddVertical({9.99, 1.3}, {-1, 0}, 0.5, 1.0, 1.42, room, TextureKind::kPicture, {});
+  b.AddVertical({6.65, 0.01}, {0, 1}, 0.6, 1.1, 1.9, room, TextureKind::kPoster, {});
   const int lamp = AddLamp(s, "kitchen ceiling", {8.0, 2.3, 2.25}, room, 110.0 * options.lamp_intensity_scale, "");
   b.AddBox({7.85, 2.15, 2.3}, {8.15, 2.45, 2.45}, room, TextureKind::kLampShade, {0.55f, 0.75f, 0.85f},
            Emission::kLamp, lamp);
@@ -261,6 +265,8 @@ void AddBedroom(ApartmentBuilder& b, const ApartmentOptions& options) {
   b.AddBox({1.4, 7.2, 0.0}, {2.3, 8.6, 0.006}, room, TextureKind::kRug, {0.35f, 0.2f, 0.2f});
   b.AddVertical({3.4, 8.99}, {0, -1}, 1.0, 1.2, 1.8, room, TextureKind::kPicture, {});
   b.AddVertical({4.2, 6.01}, {0, 1}, 0.6, 1.1, 1.9, room, TextureKind::kPoster, {});
+  b.AddVertical({0.95, 6.01}, {0, 1}, 0.8, 1.2, 1.8, room, TextureKind::kPicture, {});
+  b.AddVertical({1.3, 8.99}, {0, -1}, 0.7, 1.1, 1.9, room, TextureKind::kPoster, {});
   const int lamp = AddLamp(s, "bedside lamp", {4.65, 8.72, 0.75}, room, 45.0 * options.lamp_intensity_scale, "");
   b.AddBox({4.55, 8.62, 0.6}, {4.75, 8.82, 0.85}, room, TextureKind::kLampShade, {0.55f, 0.75f, 0.85f},
            Emission::kLamp, lamp);

@@ -41,6 +41,8 @@ void CameraModelOptions::Check() const {
   SLAM_THROW_IF_NOT(ConfigError, blur_sigma_px >= 0 && blur_sigma_px <= 5) << "camera.blur_sigma_px must be in [0, 5]";
   SLAM_THROW_IF_NOT(ConfigError, gamma >= 1 && gamma <= 3) << "camera.gamma must be in [1, 3], got " << gamma;
   SLAM_THROW_IF_NOT(ConfigError, tone_contrast >= 0 && tone_contrast <= 0.5) << "camera.tone_contrast must be in [0, 0.5]";
+  SLAM_THROW_IF_NOT(ConfigError, motion_blur_scale >= 0 && motion_blur_scale <= 4)
+      << "camera.motion_blur_scale must be in [0, 4], got " << motion_blur_scale;
 }
 
 CameraModel::CameraModel(const CameraModelOptions& options, uint64_t seed)
@@ -104,13 +106,23 @@ void CameraModel::Settle(const cv::Mat& radiance, int iterations) {
   for (int i = 0; i < iterations; ++i) Meter(radiance);
 }
 
-cv::Mat CameraModel::Capture(const cv::Mat& radiance) {
+cv::Mat CameraModel::Capture(const cv::Mat& radiance, const cv::Vec2d& image_velocity_px_per_s) {
   SLAM_CHECK(radiance.type() == CV_32FC3);
   // Blur is linear, so blurring the radiance and scaling afterwards equals
   // scaling then blurring; the scale is folded into the per-pixel loop.
   const cv::Mat* linear = &radiance;
+  // Motion blur: a box along x and y (separable, O(1) per pixel) whose
+  // lengths are the image motion during the exposure.
+  const double smear_s = state_.exposure_time_s * options_.motion_blur_scale;
+  const int smear_x = std::min(64, static_cast<int>(std::lround(std::abs(image_velocity_px_per_s[0]) * smear_s)));
+  const int smear_y = std::min(64, static_cast<int>(std::lround(std::abs(image_velocity_px_per_s[1]) * smear_s)));
+  if (smear_x >= 2 || smear_y >= 2) {
+    cv::blur(radiance, smeared_, cv::Size(std::max(1, smear_x), std::max(1, smear_y)), cv::Point(-1, -1),
+             cv::BORDER_REFLECT);
+    linear = &smeared_;
+  }
   if (options_.blur_sigma_px > 0.0) {
-    cv::GaussianBlur(radiance, blurred_, cv::Size(0, 0), options_.blur_sigma_px);
+    cv::GaussianBlur(*linear, blurred_, cv::Size(0, 0), options_.blur_sigma_px);
     linear = &blurred_;
   }
   const float scale[3] = {static_cast<float>(state_.exposure * state_.wb_gains[0]),

@@ -33,6 +33,7 @@ struct CameraModelOptions {
   double blur_sigma_px = 0.6;     // optics blur, pixels
   double gamma = 2.2;             // display gamma of the tone curve
   double tone_contrast = 0.12;    // S-curve strength added to the gamma curve, [0, 0.5]
+  double motion_blur_scale = 0.0; // motion blur = image velocity x exposure time x this; 0 = off
 
   PinholeCamera Intrinsics() const;
   void Check() const;
@@ -51,8 +52,11 @@ class CameraModel {
   CameraModel(const CameraModelOptions& options, uint64_t seed);
 
   // Produces the image of this radiance, then updates exposure and white
-  // balance from it (they act from the next frame on: the lag).
-  cv::Mat Capture(const cv::Mat& radiance_bgr);
+  // balance from it (they act from the next frame on: the lag). The image
+  // moves at image_velocity_px_per_s (x, y) during the exposure: a box blur
+  // of |velocity| x exposure time pixels along each axis (long night
+  // exposures smear while the camera turns; daylight ones stay sharp).
+  cv::Mat Capture(const cv::Mat& radiance_bgr, const cv::Vec2d& image_velocity_px_per_s = cv::Vec2d(0, 0));
   // Meters the radiance `iterations` times without producing an image, as a
   // running camera does before the first recorded frame.
   void Settle(const cv::Mat& radiance_bgr, int iterations);
@@ -70,6 +74,7 @@ class CameraModel {
   SensorNoise noise_;
   std::vector<uint8_t> tone_lut_;  // 4096 entries over [0, 1]
   cv::Mat blurred_;                // scratch: blurred radiance, reused across frames
+  cv::Mat smeared_;                // scratch: motion-blurred radiance
   std::vector<float> noise_row_;   // scratch: one row of normal samples
 };
 

@@ -52,6 +52,7 @@ void ReadCamera(JsonFields f, CameraModelOptions* o) {
   f.Read("blur_sigma_px", &o->blur_sigma_px);
   f.Read("gamma", &o->gamma);
   f.Read("tone_contrast", &o->tone_contrast);
+  f.Read("motion_blur_scale", &o->motion_blur_scale);
   f.RejectUnknown();
 }
 

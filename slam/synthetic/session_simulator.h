@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "slam/core/rgbd_frame.h"
@@ -44,6 +45,14 @@ class SessionSimulator {
   CameraModel camera_;
   SensorNoise depth_noise_;
   RenderedView view_;
+  std::optional<Rigid3d> last_world_from_camera_;  // previous frame (or settle) pose
 };
+
+// Image velocity (pixels/s, x and y) at the image centre when the camera
+// turns from `previous` to `current` at a constant rate over `interval_s`
+// (rotation only: the translation of a walking person moves the image far
+// less than turning).
+cv::Vec2d ImageVelocityPxPerS(const Rigid3d& previous_world_from_camera, const Rigid3d& current_world_from_camera,
+                              const PinholeCamera& camera, double interval_s);
 
 }  // namespace duskmap

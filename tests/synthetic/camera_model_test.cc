@@ -75,6 +75,44 @@ TEST(CameraModel, SameSeedSameBytes) {
   EXPECT_EQ(cv::norm(a.Capture(radiance), b.Capture(radiance), cv::NORM_INF), 0.0);
 }
 
+// Mean squared horizontal gradient of the green channel (sharpness along x;
+// unlike the mean absolute gradient it drops when edges are smeared).
+double HorizontalDetail(const cv::Mat& bgr) {
+  cv::Mat g, dx;
+  cv::extractChannel(bgr, g, 1);
+  g.convertTo(g, CV_32F);
+  cv::Sobel(g, dx, CV_32F, 1, 0);
+  return cv::mean(dx.mul(dx))[0];
+}
+
+TEST(CameraModel, TurningSmearsLongExposuresButNotShortOnes) {
+  CameraModelOptions options = SmallOptions();
+  options.motion_blur_scale = 1.0;
+  options.photons_at_white = 1e9;  // no noise: compare detail only
+  options.read_noise = 0.0;
+  // Vertical stripes 8 px wide: horizontal motion blurs them, vertical does not.
+  auto stripes = [](float nits) {
+    cv::Mat r(120, 160, CV_32FC3);
+    for (int c = 0; c < 160; ++c) r.col(c).setTo(cv::Scalar::all((c / 8) % 2 ? nits : 0.2 * nits));
+    return r;
+  };
+  const cv::Mat dim = stripes(2.0f), bright = stripes(4000.0f);
+  const cv::Vec2d turning(200.0, 0.0), tilting(0.0, 200.0);  // px/s
+  CameraModel night(options, 1), day(options, 1);
+  night.Settle(dim, 20);
+  day.Settle(bright, 20);
+  ASSERT_NEAR(night.state().exposure_time_s, options.max_exposure_s, 1e-9);  // 33 ms: 6.6 px of motion
+  ASSERT_LT(day.state().exposure_time_s, 0.002);                             // < 0.4 px of motion
+  const double night_still = HorizontalDetail(night.Capture(dim));
+  const double night_turning = HorizontalDetail(night.Capture(dim, turning));
+  const double night_tilting = HorizontalDetail(night.Capture(dim, tilting));
+  EXPECT_LT(night_turning, 0.6 * night_still);
+  EXPECT_NEAR(night_tilting, night_still, 0.05 * night_still);
+  const double day_still = HorizontalDetail(day.Capture(bright));
+  const double day_turning = HorizontalDetail(day.Capture(bright, turning));
+  EXPECT_NEAR(day_turning, day_still, 0.05 * day_still);
+}
+
 TEST(CameraModelOptions, CheckNamesTheField) {
   CameraModelOptions o;
   o.ae_speed = 0.0;
