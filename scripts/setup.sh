@@ -8,6 +8,7 @@ PACKAGES=(
   nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
   libsqlite3-dev libcli11-dev
   python3 python3-matplotlib python3-numpy python3-onnx
+  clang libclang-rt-14-dev  # libFuzzer targets under tests/fuzz (docs/real_data.md)
 )
 
 missing=()

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Installs, builds and runs every test (ctest); exits non-zero on any failure.
+# Installs, builds and runs every test (ctest), then the CI regression check on
+# re-localization rates (scripts/quick_check.sh); exits non-zero on any failure.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh
 jobs=$(nproc 2>/dev/null || echo 2)
 ctest --test-dir build --output-on-failure -j"$jobs"
+bash scripts/quick_check.sh

@@ -6,12 +6,14 @@
 #include <cmath>
 #include <cstdio>
 #include <iomanip>
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <memory>
 #include <sstream>
 #include <thread>
 
+#include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 
 #include "experiments/command_registry.h"
@@ -94,6 +96,20 @@ void CheckOutputFolder(const fs::path& output, const RunArgs& args, const RunMan
                                      earlier.shard_count == manifest.shard_count)
       << (output / "run.json").string()
       << ": an earlier run with other features, sessions or shard; cannot resume it";
+}
+
+// Wall-clock times of this invocation (not deterministic, kept out of the
+// report's tables): total, summed job time per kind, each job's time.
+void WriteRunTiming(const JobRunSummary& summary, const fs::path& path) {
+  nlohmann::json json;
+  json["wall_s"] = summary.wall_s;
+  json["executed"] = summary.executed;
+  json["resumed"] = summary.resumed;
+  for (const auto& [kind, seconds] : summary.busy_s_by_kind) json["job_s_by_kind"][JobKindName(kind)] = seconds;
+  json["job_s"] = summary.job_wall_s;
+  std::ofstream out(path);
+  out << json.dump(1) << "\n";
+  SLAM_THROW_IF_NOT(InputError, out.good()) << path.string() << ": cannot write";
 }
 
 RunFn SetupRun(CLI::App& command) {
@@ -185,6 +201,7 @@ RunFn SetupRun(CLI::App& command) {
                 << seconds << " s";
     }
     std::cout << "\n";
+    WriteRunTiming(summary, output / "timing.json");
     for (const JobFailure& failure : summary.failures) {
       std::cout << "failed: " << failure.job_id << ": " << failure.message << "\n";
     }

@@ -133,7 +133,9 @@ JobRunSummary RunJobs(const ExperimentPlan& plan, JobExecutor& executor,
         failure = e.what();
       }
       lock.lock();
-      scheduler.summary.busy_s_by_kind[job.kind] += job_time.ElapsedMs() / 1000.0;
+      const double job_s = job_time.ElapsedMs() / 1000.0;
+      scheduler.summary.busy_s_by_kind[job.kind] += job_s;
+      scheduler.summary.job_wall_s[job.id] = job_s;
       if (failure.empty()) {
         scheduler.states[static_cast<size_t>(next)] = State::kDone;
         ++scheduler.summary.executed;

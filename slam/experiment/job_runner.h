@@ -55,6 +55,7 @@ struct JobRunSummary {
   std::vector<JobFailure> failures;
   double wall_s = 0.0;
   std::map<JobKind, double> busy_s_by_kind;  // summed job time per kind
+  std::map<std::string, double> job_wall_s;  // each executed job's time, by id
 
   bool ok() const { return failures.empty(); }
 };
