@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "slam/core/graph_types.h"
 #include "slam/core/rigid3.h"
@@ -38,6 +39,22 @@ struct LocalizationTimings {
   double total_ms = 0.0;
 };
 
+// One transform estimation tried this frame (in the order tried).
+struct CandidateAttempt {
+  NodeId node = 0;
+  SessionId session = -1;
+  LinkType source = LinkType::kLoopClosure;  // LCD hypothesis or proximity
+  RegistrationStatus status = RegistrationStatus::kNoFeatures;
+  int matches = 0;  // first-pass correspondences with a map 3D point
+  int inliers = 0;
+  // Ground-truth distance between the node's camera and the frame's camera
+  // (m, deg); nullopt unless both have ground truth (filled by the localizer
+  // from the frame's world_from_camera and the node's truth_from_camera: it
+  // says whether the candidate was the right place, not whether TE was right).
+  std::optional<double> truth_distance_m;
+  std::optional<double> truth_angle_deg;
+};
+
 struct LocalizationRecord {
   int64_t frame_index = 0;
   double timestamp_s = 0.0;
@@ -45,8 +62,11 @@ struct LocalizationRecord {
   LocalizationOutcome outcome = LocalizationOutcome::kNoCandidate;
   LcdStatus lcd_status = LcdStatus::kNoCandidates;
   NodeId lcd_hypothesis = 0;  // 0 when LCD accepted none
+  double lcd_score = 0.0;     // 1 - P(new place)
+  std::vector<LcdHypothesis> lcd_top;  // best places by posterior (LcdOptions' count)
   int proximity_candidates = 0;
   int candidates_tried = 0;
+  std::vector<CandidateAttempt> attempts;  // every transform estimation of the frame
   // Status of the last transform estimation tried (the accepted one when
   // re-localized); nullopt when none ran.
   std::optional<RegistrationStatus> registration_status;

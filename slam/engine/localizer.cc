@@ -1,6 +1,7 @@
 #include "slam/engine/localizer.h"
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 #include "slam/core/check.h"
@@ -72,6 +73,8 @@ LocalizationRecord Localizer::ProcessFrame(const RgbdFrame& frame,
   record.timings.lcd_ms = lcd_watch.ElapsedMs();
   record.lcd_status = lcd.status;
   record.lcd_hypothesis = lcd.accepted() ? lcd.hypothesis : 0;
+  record.lcd_score = lcd.score;
+  record.lcd_top = lcd.top;
 
   std::vector<Candidate> candidates = ProximityCandidates(odom_from_camera, &record);
   if (lcd.accepted()) candidates.push_back({lcd.hypothesis, LinkType::kLoopClosure});
@@ -156,6 +159,20 @@ Localizer::Attempt Localizer::TryCandidate(const Candidate& candidate, const Rgb
   ++record->candidates_tried;
   record->registration_status = registration.status;
   record->inliers = registration.num_inliers;
+  CandidateAttempt attempt;
+  attempt.node = candidate.node;
+  attempt.session = node.session;
+  attempt.source = candidate.type;
+  attempt.status = registration.status;
+  attempt.matches = registration.matches_first_pass;
+  attempt.inliers = registration.num_inliers;
+  if (node.truth_from_camera && frame.world_from_camera) {
+    const Rigid3d node_from_frame = node.truth_from_camera->Inverse() * *frame.world_from_camera;
+    attempt.truth_distance_m = node_from_frame.translation.norm();
+    attempt.truth_angle_deg =
+        RotationAngleRad(node_from_frame.rotation, Eigen::Quaterniond::Identity()) * 180.0 / M_PI;
+  }
+  record->attempts.push_back(attempt);
   if (!registration.accepted()) return Attempt::kRejected;
   if (cache_) {
     const CacheValidationResult validation =

@@ -38,6 +38,18 @@ void Flatten(const nlohmann::json& value, const std::string& prefix,
   }
 }
 
+// RFC 4180 quoting: a field with a comma, quote or line break is quoted, its
+// quotes doubled (lists of candidate attempts are JSON with commas).
+std::string CsvField(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) {
+    if (c == '"') quoted += '"';
+    quoted += c;
+  }
+  return quoted + "\"";
+}
+
 }  // namespace
 
 nlohmann::json LocalizationRecordToJson(const LocalizationRecord& r) {
@@ -50,7 +62,26 @@ nlohmann::json LocalizationRecordToJson(const LocalizationRecord& r) {
   j["registration_status"] =
       r.registration_status ? nlohmann::json(RegistrationStatusName(*r.registration_status))
                             : nlohmann::json(nullptr);
+  j["lcd_hypothesis"] = r.lcd_hypothesis ? nlohmann::json(r.lcd_hypothesis) : nlohmann::json(nullptr);
+  j["lcd_score"] = r.lcd_score;
+  nlohmann::json top = nlohmann::json::array();
+  for (const LcdHypothesis& h : r.lcd_top) {
+    top.push_back({{"node", h.node}, {"posterior", h.posterior}, {"likelihood", h.adjusted_likelihood}});
+  }
+  j["lcd_top"] = top;
   j["candidates_tried"] = r.candidates_tried;
+  nlohmann::json attempts = nlohmann::json::array();
+  for (const CandidateAttempt& a : r.attempts) {
+    attempts.push_back({{"node", a.node},
+                        {"session", a.session},
+                        {"source", LinkTypeName(a.source)},
+                        {"status", RegistrationStatusName(a.status)},
+                        {"matches", a.matches},
+                        {"inliers", a.inliers},
+                        {"truth_distance_m", Optional(a.truth_distance_m)},
+                        {"truth_angle_deg", Optional(a.truth_angle_deg)}});
+  }
+  j["attempts"] = attempts;
   j["proximity_candidates"] = r.proximity_candidates;
   j["matched_node"] = r.relocalized ? nlohmann::json(r.matched_node) : nlohmann::json(nullptr);
   j["matched_session"] =
@@ -127,7 +158,7 @@ void WriteCsv(std::ostream& out, const std::vector<nlohmann::json>& rows) {
     std::map<std::string, std::string> by_key(cells.begin(), cells.end());
     for (size_t i = 0; i < header.size(); ++i) {
       auto it = by_key.find(header[i]);
-      out << (i ? "," : "") << (it == by_key.end() ? "" : it->second);
+      out << (i ? "," : "") << (it == by_key.end() ? "" : CsvField(it->second));
     }
     out << '\n';
   }
