@@ -69,24 +69,51 @@ std::array<Eigen::Vector3d, 4> Corners(const Quad& q) {
           q.PointAt(0.0, q.size_v_m)};
 }
 
-// Whether the sun reaches `point` through window `w` (mullions and every
-// opaque quad checked).
-bool SunThroughWindow(const Scene& scene, const Quad& window, const Eigen::Vector3d& point,
-                      const Eigen::Vector3d& to_sun, int receiver_quad) {
+// Opaque quads of each room: what can cast a shadow on a point of that room
+// (light reaches a room only through its own windows, or from its own lamps;
+// walls, furniture and fittings are assigned to the room they stand in).
+// Glowing lamp shades do not occlude their light.
+std::vector<std::vector<int>> OccludersByRoom(const Scene& scene) {
+  std::vector<std::vector<int>> occluders(scene.room_names.size());
+  for (size_t i = 0; i < scene.quads.size(); ++i) {
+    const Quad& q = scene.quads[i];
+    if (q.emission != Emission::kNone) continue;
+    if (q.room >= 0 && q.room < static_cast<int>(occluders.size())) {
+      occluders[static_cast<size_t>(q.room)].push_back(static_cast<int>(i));
+    }
+  }
+  return occluders;
+}
+
+// Whether an occluder lies on the segment from `point` along the unit
+// `direction` up to `distance`.
+bool Occluded(const Scene& scene, const std::vector<int>& occluders, const Eigen::Vector3d& point,
+              const Eigen::Vector3d& direction, double distance, int receiver_quad) {
+  for (const int i : occluders) {
+    if (i == receiver_quad) continue;
+    const double d = scene.quads[static_cast<size_t>(i)].Intersect(point, direction);
+    if (d > 1e-4 && d < distance) return true;
+  }
+  return false;
+}
+
+// Whether the sun reaches `point` through window `w` (mullions and the
+// room's opaque quads checked).
+bool SunThroughWindow(const Scene& scene, const std::vector<int>& occluders, const Quad& window,
+                      const Eigen::Vector3d& point, const Eigen::Vector3d& to_sun,
+                      int receiver_quad) {
   const double d_window = window.Intersect(point, to_sun);
   if (d_window < 0.0) return false;
   const Eigen::Vector3d hit = point + d_window * to_sun - window.origin_in_world;
   const int col = std::clamp(static_cast<int>(hit.dot(window.u_axis) / window.size_u_m * window.albedo.cols), 0, window.albedo.cols - 1);
   const int row = std::clamp(static_cast<int>(hit.dot(window.v_axis) / window.size_v_m * window.albedo.rows), 0, window.albedo.rows - 1);
   if (Luminance(window.albedo.at<cv::Vec3f>(row, col)) < 0.05f) return false;  // mullion
-  for (size_t i = 0; i < scene.quads.size(); ++i) {
-    const Quad& q = scene.quads[i];
-    if (static_cast<int>(i) == receiver_quad || q.emission == Emission::kSky) continue;
-    const double d = q.Intersect(point, to_sun);
-    if (d > 1e-4 && d < d_window) return false;
-  }
-  return true;
+  return !Occluded(scene, occluders, point, to_sun, d_window, receiver_quad);
 }
+
+IrradianceParts DirectIrradiance(const Scene& scene, const SessionLighting& lighting,
+                                 const std::vector<int>& occluders, const Eigen::Vector3d& point,
+                                 const Eigen::Vector3d& normal, int room, int receiver_quad);
 
 cv::Vec3f Scale(const cv::Vec3f& c, double s) { return c * static_cast<float>(s); }
 
@@ -176,6 +203,18 @@ SessionLighting ComputeSessionLighting(const LightingOptions& options, const Sce
 IrradianceParts ComputeDirectIrradiance(const Scene& scene, const SessionLighting& lighting,
                                         const Eigen::Vector3d& point, const Eigen::Vector3d& normal,
                                         int room, int receiver_quad) {
+  const std::vector<std::vector<int>> occluders = OccludersByRoom(scene);
+  static const std::vector<int> kNone;
+  const bool known_room = room >= 0 && room < static_cast<int>(occluders.size());
+  return DirectIrradiance(scene, lighting, known_room ? occluders[static_cast<size_t>(room)] : kNone,
+                          point, normal, room, receiver_quad);
+}
+
+namespace {
+
+IrradianceParts DirectIrradiance(const Scene& scene, const SessionLighting& lighting,
+                                 const std::vector<int>& occluders, const Eigen::Vector3d& point,
+                                 const Eigen::Vector3d& normal, int room, int receiver_quad) {
   IrradianceParts parts;
   const Eigen::Vector3d& to_sun = lighting.sun_direction_in_world;
   const double cos_sun = normal.dot(to_sun);
@@ -184,7 +223,8 @@ IrradianceParts ComputeDirectIrradiance(const Scene& scene, const SessionLightin
     if (q.emission != Emission::kSky || q.room != room) continue;
     if (q.normal().dot(point - q.origin_in_world) <= 0.0) continue;  // behind the window
     parts.sky += Scale(lighting.sky_nits_bgr, ProjectedSolidAngle(Corners(q), point, normal));
-    if (sun_up && Luminance(parts.sun) == 0.0f && SunThroughWindow(scene, q, point, to_sun, receiver_quad)) {
+    if (sun_up && Luminance(parts.sun) == 0.0f &&
+        SunThroughWindow(scene, occluders, q, point, to_sun, receiver_quad)) {
       parts.sun = Scale(lighting.sun_normal_lux_bgr, cos_sun);
     }
   }
@@ -193,22 +233,23 @@ IrradianceParts ComputeDirectIrradiance(const Scene& scene, const SessionLightin
     if (!lighting.lamp_on[i] || lamp.room != room) continue;
     const Eigen::Vector3d to_lamp = lamp.position_in_world - point;
     const double r2 = std::max(to_lamp.squaredNorm(), 0.01);
-    const double cos_lamp = normal.dot(to_lamp) / std::sqrt(r2);
+    const double r = std::sqrt(r2);
+    const double cos_lamp = normal.dot(to_lamp) / r;
     if (cos_lamp <= 0.0) continue;
+    // Hard shadows from a point lamp: furniture, objects and walls between.
+    if (Occluded(scene, occluders, point, to_lamp / r, r, receiver_quad)) continue;
     parts.lamps += Scale(lighting.lamp_color_bgr, lamp.intensity_cd * cos_lamp / r2);
   }
   return parts;
 }
-
-namespace {
 
 struct LightMap {
   int nodes_u = 0, nodes_v = 0;
   std::vector<cv::Vec3f> lux;  // row-major, nodes_v rows
 };
 
-LightMap ComputeLightMap(const Scene& scene, const SessionLighting& lighting, int quad_index,
-                         double texel_m) {
+LightMap ComputeLightMap(const Scene& scene, const SessionLighting& lighting,
+                         const std::vector<int>& occluders, int quad_index, double texel_m) {
   const Quad& q = scene.quads[quad_index];
   LightMap map;
   map.nodes_u = std::max(2, static_cast<int>(std::ceil(q.size_u_m / texel_m)) + 1);
@@ -219,7 +260,7 @@ LightMap ComputeLightMap(const Scene& scene, const SessionLighting& lighting, in
     for (int i = 0; i < map.nodes_u; ++i) {
       const Eigen::Vector3d p = q.PointAt(q.size_u_m * i / (map.nodes_u - 1), q.size_v_m * j / (map.nodes_v - 1)) + 1e-3 * n;
       map.lux[static_cast<size_t>(j) * map.nodes_u + i] =
-          ComputeDirectIrradiance(scene, lighting, p, n, q.room, quad_index).total();
+          DirectIrradiance(scene, lighting, occluders, p, n, q.room, quad_index).total();
     }
   }
   return map;
@@ -269,10 +310,15 @@ std::vector<cv::Vec3f> AmbientPerRoom(const Scene& scene, const std::vector<Ligh
 
 std::vector<cv::Mat> PrepareRadiance(const Scene& scene, const SessionLighting& lighting,
                                      const LightingOptions& options) {
+  const std::vector<std::vector<int>> occluders = OccludersByRoom(scene);
   std::vector<LightMap> maps(scene.quads.size());
   for (size_t i = 0; i < scene.quads.size(); ++i) {
-    if (scene.quads[i].emission == Emission::kSky) continue;
-    maps[i] = ComputeLightMap(scene, lighting, static_cast<int>(i), options.light_texel_m);
+    const Quad& q = scene.quads[i];
+    if (q.emission == Emission::kSky) continue;
+    static const std::vector<int> kNone;
+    const bool known_room = q.room >= 0 && q.room < static_cast<int>(occluders.size());
+    maps[i] = ComputeLightMap(scene, lighting, known_room ? occluders[static_cast<size_t>(q.room)] : kNone,
+                              static_cast<int>(i), options.light_texel_m);
   }
   const std::vector<cv::Vec3f> ambient = AmbientPerRoom(scene, maps, options);
   std::vector<cv::Mat> radiance(scene.quads.size());

@@ -157,6 +157,170 @@ cv::Mat MakeWindow(cv::Size size, cv::RNG& rng) {
   return out;
 }
 
+cv::Mat MakeCabinet(cv::Size size, const cv::Vec3f& base, cv::RNG& rng) {
+  cv::Mat out = Modulated(size, base, ValueNoise(size, 6.0, rng), 0.05f);
+  // Doors about 0.4-0.6 m wide (texels of 4 mm): split the width evenly.
+  const int doors = std::max(1, static_cast<int>(std::lround(size.width / 125.0)));
+  const int door_w = size.width / doors;
+  const int drawers = size.height > 150 && rng.uniform(0, 2) ? 1 : 0;
+  const int drawer_h = drawers ? std::min(size.height / 4, 60) : 0;
+  const cv::Scalar edge = ToScalar(base * 0.45f), bevel = ToScalar(base * 1.25f);
+  const cv::Scalar metal = ToScalar(RandomColor(rng, 0.15f, 0.6f));
+  for (int d = 0; d < doors; ++d) {
+    const int x0 = d * door_w;
+    cv::rectangle(out, cv::Rect(x0, 0, door_w, size.height), edge, 2);
+    if (drawers) {
+      cv::line(out, {x0, drawer_h}, {x0 + door_w, drawer_h}, edge, 2);
+      cv::rectangle(out, cv::Rect(x0 + door_w / 2 - 12, drawer_h / 2 - 2, 24, 5), metal, cv::FILLED);
+    }
+    const int m = std::max(4, door_w / 8);
+    cv::rectangle(out, cv::Rect(x0 + m, drawer_h + m, door_w - 2 * m, size.height - drawer_h - 2 * m), bevel, 1);
+    cv::rectangle(out, cv::Rect(x0 + m + 2, drawer_h + m + 2, door_w - 2 * m - 4, size.height - drawer_h - 2 * m - 4), edge, 1);
+    const int hx = d % 2 ? x0 + m / 2 + 1 : x0 + door_w - m / 2 - 3;
+    const int hy = drawer_h + (size.height - drawer_h) / 3;
+    cv::rectangle(out, cv::Rect(hx, hy, 3, std::min(30, std::max(6, size.height / 8))), metal, cv::FILLED);
+  }
+  return out;
+}
+
+cv::Mat MakeRadiator(cv::Size size, const cv::Vec3f& base, cv::RNG& rng) {
+  cv::Mat out = Modulated(size, base, ValueNoise(size, 8.0, rng), 0.03f);
+  const int fin = 12;
+  for (int x = fin / 2; x < size.width; x += fin) {
+    cv::line(out, {x, 3}, {x, size.height - 4}, ToScalar(base * 0.55f), 2);
+    cv::line(out, {x + 3, 3}, {x + 3, size.height - 4}, ToScalar(base * 1.15f), 1);
+  }
+  cv::rectangle(out, cv::Rect(0, 0, size.width, size.height), ToScalar(base * 0.6f), 2);
+  cv::circle(out, {size.width - 8, size.height - 8}, 4, cv::Scalar(0.35, 0.4, 0.45), cv::FILLED);  // valve
+  return out;
+}
+
+cv::Mat MakeCurtain(cv::Size size, const cv::Vec3f& base, cv::RNG& rng) {
+  cv::Mat out = Modulated(size, base, ValueNoise(size, 1.5, rng), 0.08f);
+  const cv::Vec3f accent = RandomColor(rng, 0.05f, 0.7f);
+  if (rng.uniform(0, 2)) {  // stripes
+    const int period = rng.uniform(18, 40);
+    for (int x = rng.uniform(0, period); x < size.width; x += period) {
+      cv::rectangle(out, cv::Rect(x, 0, std::max(2, period / 4), size.height), ToScalar(accent), cv::FILLED);
+    }
+  } else {  // scattered motif
+    const int motifs = size.area() / 900;
+    for (int i = 0; i < motifs; ++i) {
+      const cv::Point p(rng.uniform(0, size.width), rng.uniform(0, size.height));
+      const int r = rng.uniform(3, 9);
+      cv::circle(out, p, r, ToScalar(accent), cv::FILLED, cv::LINE_AA);
+      cv::circle(out, p + cv::Point(r, -r), r / 2 + 1, ToScalar(accent * 0.6f), cv::FILLED, cv::LINE_AA);
+    }
+  }
+  // Folds: a slow shading across the width.
+  for (int c = 0; c < size.width; ++c) {
+    const float fold = 0.82f + 0.18f * static_cast<float>(std::sin(c * 2.0 * 3.14159265 / 35.0));
+    for (int r = 0; r < size.height; ++r) out.at<cv::Vec3f>(r, c) *= fold;
+  }
+  return out;
+}
+
+cv::Mat MakeScreen(cv::Size size, cv::RNG& rng) {
+  cv::Mat out(size, CV_32FC3, cv::Scalar(0.015, 0.015, 0.018));
+  const int bezel = std::max(3, std::min(size.width, size.height) / 30);
+  // A faint reflection streak on the glass.
+  cv::Mat streak = ValueNoise(size, 40.0, rng);
+  for (int r = 0; r < size.height; ++r) {
+    for (int c = 0; c < size.width; ++c) {
+      const float v = 0.02f + 0.015f * streak.at<float>(r, c);
+      out.at<cv::Vec3f>(r, c) = cv::Vec3f(v, v, v * 1.1f);
+    }
+  }
+  cv::rectangle(out, cv::Rect(0, 0, size.width, size.height), cv::Scalar(0.05, 0.05, 0.05), 2 * bezel);
+  cv::circle(out, {size.width / 2, size.height - bezel / 2}, std::max(1, bezel / 4), cv::Scalar(0.6, 0.3, 0.2), cv::FILLED);
+  return out;
+}
+
+cv::Mat MakePackaging(cv::Size size, const cv::Vec3f& base, cv::RNG& rng) {
+  cv::Mat out(size, CV_32FC3, ToScalar(base));
+  const cv::Vec3f band = RandomColor(rng, 0.05f, 0.85f);
+  const int band_y = rng.uniform(0, std::max(1, size.height / 2));
+  cv::rectangle(out, cv::Rect(0, band_y, size.width, std::max(3, size.height / rng.uniform(3, 6))), ToScalar(band), cv::FILLED);
+  DrawRandomShapes(out, std::max(3, size.area() / 1500), rng, 0.03f, 0.9f);
+  DrawText(out, std::max(1, size.height / 40), rng, 0.01f, 0.95f);
+  cv::rectangle(out, cv::Rect(0, 0, size.width, size.height), ToScalar(base * 0.5f), 1);
+  return out;
+}
+
+cv::Mat MakeWallpaper(cv::Size size, const cv::Vec3f& base, cv::RNG& rng) {
+  cv::Mat out = Modulated(size, base, ValueNoise(size, 12.0, rng), 0.04f);
+  const cv::Vec3f ink = base * rng.uniform(0.55f, 0.75f);
+  const cv::Vec3f leaf = RandomColor(rng, 0.1f, 0.5f);
+  // A jittered grid of small motifs: no two alike, so they stay matchable.
+  const int cell = 28;
+  for (int gy = 0; gy * cell < size.height + cell; ++gy) {
+    for (int gx = 0; gx * cell < size.width + cell; ++gx) {
+      const cv::Point p(gx * cell + (gy % 2) * cell / 2 + rng.uniform(-6, 7), gy * cell + rng.uniform(-6, 7));
+      switch (rng.uniform(0, 3)) {
+        case 0:
+          cv::circle(out, p, rng.uniform(2, 6), ToScalar(ink), cv::FILLED, cv::LINE_AA);
+          break;
+        case 1: {
+          const double a = rng.uniform(0.0, 3.14159);
+          const cv::Point d(static_cast<int>(7 * std::cos(a)), static_cast<int>(7 * std::sin(a)));
+          cv::line(out, p - d, p + d, ToScalar(leaf), 2, cv::LINE_AA);
+          cv::circle(out, p + d, 3, ToScalar(leaf), cv::FILLED, cv::LINE_AA);
+          break;
+        }
+        default:
+          cv::rectangle(out, cv::Rect(p.x - 3, p.y - 3, 6, 6), ToScalar(ink * 0.9f), 1);
+      }
+    }
+  }
+  return out;
+}
+
+cv::Mat MakeSwitch(cv::Size size, cv::RNG& rng) {
+  cv::Mat out(size, CV_32FC3, cv::Scalar(0.78, 0.8, 0.8));
+  cv::rectangle(out, cv::Rect(0, 0, size.width, size.height), cv::Scalar(0.55, 0.57, 0.58), 1);
+  if (rng.uniform(0, 2)) {  // switch rocker
+    cv::rectangle(out, cv::Rect(size.width / 3, size.height / 4, size.width / 3, size.height / 2),
+                  cv::Scalar(0.6, 0.62, 0.63), cv::FILLED);
+    cv::line(out, {size.width / 3, size.height / 2}, {2 * size.width / 3, size.height / 2}, cv::Scalar(0.4, 0.4, 0.4), 1);
+  } else {  // socket
+    cv::circle(out, {size.width / 2, size.height / 2}, std::max(2, size.width / 4), cv::Scalar(0.62, 0.64, 0.65), cv::FILLED);
+    cv::circle(out, {size.width / 2 - size.width / 10, size.height / 2}, 1, cv::Scalar(0.1, 0.1, 0.1), cv::FILLED);
+    cv::circle(out, {size.width / 2 + size.width / 10, size.height / 2}, 1, cv::Scalar(0.1, 0.1, 0.1), cv::FILLED);
+  }
+  return out;
+}
+
+cv::Mat MakeClock(cv::Size size, cv::RNG& rng) {
+  cv::Mat out(size, CV_32FC3, ToScalar(RandomColor(rng, 0.1f, 0.5f)));
+  const cv::Point c(size.width / 2, size.height / 2);
+  const int r = std::min(size.width, size.height) / 2 - 2;
+  cv::circle(out, c, r, cv::Scalar(0.85, 0.85, 0.82), cv::FILLED, cv::LINE_AA);
+  cv::circle(out, c, r, cv::Scalar(0.1, 0.1, 0.1), std::max(2, r / 12), cv::LINE_AA);
+  for (int k = 0; k < 12; ++k) {
+    const double a = k * 3.14159265 / 6.0;
+    const cv::Point d(static_cast<int>(r * std::cos(a)), static_cast<int>(r * std::sin(a)));
+    cv::line(out, c + d * 0.8, c + d * 0.92, cv::Scalar(0.05, 0.05, 0.05), k % 3 ? 1 : 3, cv::LINE_AA);
+  }
+  const double hour = rng.uniform(0.0, 6.28), minute = rng.uniform(0.0, 6.28);
+  cv::line(out, c, c + cv::Point(static_cast<int>(0.5 * r * std::cos(hour)), static_cast<int>(0.5 * r * std::sin(hour))), cv::Scalar(0.05, 0.05, 0.05), 3, cv::LINE_AA);
+  cv::line(out, c, c + cv::Point(static_cast<int>(0.75 * r * std::cos(minute)), static_cast<int>(0.75 * r * std::sin(minute))), cv::Scalar(0.05, 0.05, 0.05), 2, cv::LINE_AA);
+  DrawText(out, 1, rng, 0.05f, 0.3f);
+  return out;
+}
+
+cv::Mat MakeFoliage(cv::Size size, cv::RNG& rng) {
+  cv::Mat out(size, CV_32FC3, cv::Scalar(0.04, 0.09, 0.05));
+  const int leaves = std::max(10, size.area() / 120);
+  for (int i = 0; i < leaves; ++i) {
+    const cv::Point p(rng.uniform(0, size.width), rng.uniform(0, size.height));
+    const cv::Vec3f green(rng.uniform(0.02f, 0.12f), rng.uniform(0.12f, 0.4f), rng.uniform(0.03f, 0.18f));
+    cv::ellipse(out, p, cv::Size(rng.uniform(4, 14), rng.uniform(2, 6)), rng.uniform(0.0, 180.0), 0, 360,
+                ToScalar(green), cv::FILLED, cv::LINE_AA);
+    cv::line(out, p, p + cv::Point(rng.uniform(-8, 9), rng.uniform(-8, 9)), ToScalar(green * 0.5f), 1, cv::LINE_AA);
+  }
+  return out;
+}
+
 }  // namespace
 
 double TexelSizeM(TextureKind kind) {
@@ -175,6 +339,15 @@ double TexelSizeM(TextureKind kind) {
     case TextureKind::kDoor: return 0.01;
     case TextureKind::kWindow: return 0.01;
     case TextureKind::kLampShade: return 0.02;
+    case TextureKind::kCabinet: return 0.004;
+    case TextureKind::kRadiator: return 0.004;
+    case TextureKind::kCurtain: return 0.006;
+    case TextureKind::kScreen: return 0.006;
+    case TextureKind::kPackaging: return 0.002;
+    case TextureKind::kWallpaper: return 0.004;
+    case TextureKind::kSwitch: return 0.002;
+    case TextureKind::kClock: return 0.002;
+    case TextureKind::kFoliage: return 0.004;
   }
   return 0.02;
 }
@@ -256,6 +429,15 @@ cv::Mat MakeTexture(const TextureRequest& request, const std::vector<cv::Mat>& u
     case TextureKind::kWindow: return MakeWindow(size, rng);
     case TextureKind::kLampShade:
       return Modulated(size, base, ValueNoise(size, 3.0, rng), 0.05f);
+    case TextureKind::kCabinet: return MakeCabinet(size, base, rng);
+    case TextureKind::kRadiator: return MakeRadiator(size, base, rng);
+    case TextureKind::kCurtain: return MakeCurtain(size, base, rng);
+    case TextureKind::kScreen: return MakeScreen(size, rng);
+    case TextureKind::kPackaging: return MakePackaging(size, base, rng);
+    case TextureKind::kWallpaper: return MakeWallpaper(size, base, rng);
+    case TextureKind::kSwitch: return MakeSwitch(size, rng);
+    case TextureKind::kClock: return MakeClock(size, rng);
+    case TextureKind::kFoliage: return MakeFoliage(size, rng);
   }
   return cv::Mat(size, CV_32FC3, ToScalar(base));
 }

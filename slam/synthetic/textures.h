@@ -25,6 +25,15 @@ enum class TextureKind {
   kDoor,      // painted door panel
   kWindow,    // sky and outdoor silhouettes behind mullions (shown emissive)
   kLampShade, // translucent shade
+  kCabinet,   // cabinet or wardrobe front: door panels with edges and handles
+  kRadiator,  // painted radiator: vertical fins
+  kCurtain,   // patterned curtain fabric with vertical folds
+  kScreen,    // switched-off TV or monitor: dark glass in a bezel
+  kPackaging, // printed packaging or covers: labels, stripes, text (boxes, jars, magazines)
+  kWallpaper, // patterned wallpaper: a scattered, non-repeating motif
+  kSwitch,    // wall switch or socket plate
+  kClock,     // wall clock face with ticks and hands
+  kFoliage,   // house-plant leaves
 };
 
 struct TextureRequest {

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <iterator>
 
 #include <gtest/gtest.h>
@@ -87,17 +88,15 @@ std::string FileBytes(const std::string& path) {
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-// DISABLED: the issue asks for >= 90 %; measured 2026-11-22 on these 25-frame
-// 640x480 sessions: 17/25 (68 %) re-localized, 0 wrong, with float32 and uint8
-// node descriptors alike. Every miss is an LCD hypothesis that is the nearest
-// map node in ground truth, but 6 of the 8 frames register with no map node at
-// all (at most 16 PnP inliers, 20 needed): views with few depth points (glass,
-// far range) or low texture. docs/engine.md has the diagnosis.
-TEST_F(EngineSessions, DISABLED_SameLightSessionRelocalizes) {
+// The issue's first engine test: a single-session map localizes a session
+// recorded minutes later at the same light, >= 90 % of frames, none wrong.
+TEST_F(EngineSessions, SameLightSessionRelocalizes) {
   const MappingRun& map1 = MapOf("1", {"1"}, false);
   const LocalizationRun run = Localize(map1.map, "A");
   const RelocalizationSummary& s = run.summary.relocalization;
   EXPECT_TRUE(run.summary.evaluated);
+  std::cout << "[ measured ] map 1, session A: " << s.num_relocalized << " of " << s.num_frames
+            << " re-localized, " << s.num_wrong << " wrong\n";
   EXPECT_GE(s.relocalized_pct, 90.0) << s.num_relocalized << " of " << s.num_frames << ": "
                                      << Outcomes(run);
   ExpectNoWrong(run, "map 1, session A");
@@ -124,7 +123,9 @@ TEST_F(EngineSessions, OdometryCacheDelaysAndValidatesRelocalizations) {
   EXPECT_FALSE(first_accepted->map_from_camera.has_value());
   EXPECT_GE(run.summary.relocalization.num_relocalized, 10) << Outcomes(run);
   for (const LocalizationRecord& r : run.records) {
-    if (r.relocalized) EXPECT_EQ(r.cache_validation, CacheValidation::kApplied);
+    if (r.relocalized) {
+      EXPECT_EQ(r.cache_validation, CacheValidation::kApplied);
+    }
   }
   ExpectNoWrong(run, "map 1, session A, odometry cache 10");
 }
@@ -134,6 +135,8 @@ TEST_F(EngineSessions, NightSessionNeedsANightMap) {
   const LocalizationRun day_night = Localize(MapOf("1+6", {"1", "6"}, false).map, "F");
   ExpectNoWrong(day_only, "map 1, session F");
   ExpectNoWrong(day_night, "map 1+6, session F");
+  std::cout << "[ measured ] session F: map 1 " << day_only.summary.relocalization.relocalized_pct
+            << " %, map 1+6 " << day_night.summary.relocalization.relocalized_pct << " %\n";
   EXPECT_GE(day_night.summary.relocalization.relocalized_pct,
             day_only.summary.relocalization.relocalized_pct + 20.0)
       << "day map " << day_only.summary.relocalization.relocalized_pct << "%, day+night map "

@@ -58,13 +58,31 @@ TEST_F(LightingTest, SunPatchesEnterThroughTheWindowsInTheAfternoon) {
 TEST_F(LightingTest, AfterDuskOnlyTheLampsLight) {
   const SessionLighting l = ComputeSessionLighting(options_, *scene_, 20.75);
   EXPECT_LT(l.sun.elevation_deg, -6.0);
-  for (const auto& point : {Eigen::Vector3d(1.0, 2.0, 0.001), Eigen::Vector3d(3.0, 7.0, 0.001)}) {
+  // A living-room floor point the floor lamp reaches, and a bedroom wall
+  // point above the bed that the bedside lamp reaches (lamps cast shadows:
+  // the bed hides that lamp from most of the bedroom floor).
+  const std::pair<Eigen::Vector3d, Eigen::Vector3d> points[] = {
+      {{1.0, 2.0, 0.001}, {0, 0, 1}}, {{3.5, 6.02, 1.0}, {0, 1, 0}}};
+  for (const auto& [point, normal] : points) {
     const int room = point.y() < 4.6 ? 0 : 3;
-    const IrradianceParts e = ComputeDirectIrradiance(*scene_, l, point, {0, 0, 1}, room, -1);
+    const IrradianceParts e = ComputeDirectIrradiance(*scene_, l, point, normal, room, -1);
     EXPECT_EQ(Luminance(e.sun), 0.0f);
     EXPECT_GT(Luminance(e.lamps), 0.0f);
     EXPECT_LT(Luminance(e.sky), 0.01f * Luminance(e.lamps));
   }
+}
+
+TEST_F(LightingTest, LampsCastShadows) {
+  // At night the bedside lamp (0.75 m high, beside the bed) lights the duvet
+  // but not the floor on the far side of the bed.
+  const SessionLighting l = ComputeSessionLighting(options_, *scene_, 20.75);
+  const int bedroom = 3;
+  const IrradianceParts on_bed =
+      ComputeDirectIrradiance(*scene_, l, {3.0, 7.5, 0.56}, {0, 0, 1}, bedroom, -1);
+  const IrradianceParts behind_bed =
+      ComputeDirectIrradiance(*scene_, l, {1.2, 7.0, 0.001}, {0, 0, 1}, bedroom, -1);
+  EXPECT_GT(Luminance(on_bed.lamps), 1.0f);
+  EXPECT_EQ(Luminance(behind_bed.lamps), 0.0f);
 }
 
 TEST_F(LightingTest, LivingRoomLampSwitchesOnAt1754) {
