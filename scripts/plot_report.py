@@ -84,10 +84,10 @@ def relocalization_over_time(cells, timeline, out_dir):
             continue
         row = max(ordered(c["row"] for c in rows), key=lambda r: r.count("+"))
         mine = [c for c in rows if c["row"] == row]
-        sessions = ordered(t["matched_session"] for c in mine for t in by_job.get(c["job"], [])
-                           if t["matched_session"])
+        sessions = sorted(set(t["matched_session"] for c in mine for t in by_job.get(c["job"], [])
+                              if t["matched_session"]))
         colors = {s: plt.cm.tab10(i % 10) for i, s in enumerate(sessions)}
-        fig, ax = plt.subplots(figsize=(9, 0.5 + 0.4 * len(mine)))
+        fig, ax = plt.subplots(figsize=(9, 0.9 + 0.4 * len(mine)))
         for y, cell in enumerate(mine):
             for t in by_job.get(cell["job"], []):
                 if t["matched_session"]:
@@ -98,7 +98,8 @@ def relocalization_over_time(cells, timeline, out_dir):
                      fontsize=9)
         handles = [plt.Line2D([], [], marker="o", linestyle="", color=colors[s], label=s)
                    for s in sessions]
-        ax.legend(handles=handles, fontsize=7, loc="upper right", ncol=len(sessions))
+        ax.legend(handles=handles, fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0),
+                  title="map session", title_fontsize=7)
         fig.tight_layout()
         path = os.path.join(out_dir, f"relocalization_over_time_{feature}.png")
         fig.savefig(path, dpi=110)

@@ -141,10 +141,12 @@ RunFn SetupRun(CLI::App& command) {
     RunManifest manifest;
     manifest.config_path = args->config;
     manifest.dataset_path = options.dataset_path;
-    manifest.session_clock = SessionClockOf(sessions);
+    manifest.session_clock = SessionClockOf(sessions, options.session_clock_times);
     manifest.shard_index = shard_index;
     manifest.shard_count = shard_count;
-    SelectRunnableFeatures(options, engine.features.superpoint.model_path, &manifest);
+    SelectRunnableFeatures(options,
+                           {engine.features.superpoint.model_path, engine.matcher.superglue.model_path},
+                           &manifest);
     for (const SkippedFeature& skipped : manifest.skipped_features) {
       std::cout << "note: feature " << skipped.label << " skipped: " << skipped.reason << "\n";
     }

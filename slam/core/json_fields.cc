@@ -26,6 +26,7 @@ const nlohmann::json& JsonFields::Raw(const std::string& key) {
 
 void JsonFields::RejectUnknown() const {
   for (auto it = object_.begin(); it != object_.end(); ++it) {
+    if (it.key() == kCommentKey) continue;
     SLAM_THROW_IF_NOT(ConfigError, used_.count(it.key()) > 0)
         << where_ << ": unknown key '" << it.key() << "'";
   }

@@ -48,8 +48,10 @@ class JsonFields {
   const nlohmann::json& Raw(const std::string& key);
   const std::string& where() const { return where_; }
 
-  // Throws ConfigError naming the first key that was never read.
+  // Throws ConfigError naming the first key that was never read; the key
+  // "_comment" (free text for the reader of a config) is always allowed.
   void RejectUnknown() const;
+  static constexpr const char* kCommentKey = "_comment";
 
  private:
   nlohmann::json object_;

@@ -97,9 +97,13 @@ double WriteGraphAndAte(const Map& map, const fs::path& graph_file) {
 EngineOptions EngineOptionsForFeature(const EngineOptions& base, const FeatureSetup& setup) {
   EngineOptions options = base;
   options.features.type = setup.extractor;
-  SLAM_THROW_IF_NOT(ConfigError, setup.matcher == "nndr")
-      << "feature " << setup.label << ": matcher '" << setup.matcher
-      << "' is not available in this engine build";
+  // The column decides the matcher (SP: NNDR, SG: SuperGlue on the same
+  // SuperPoint features); the engine config supplies the SuperGlue model.
+  options.matcher.type = setup.matcher;
+  if (setup.matcher == "superglue") {
+    SLAM_THROW_IF_NOT(ConfigError, !options.matcher.superglue.model_path.empty())
+        << "feature " << setup.label << " needs matcher.superglue.model_path in the engine config";
+  }
   if (setup.needs_model) {
     SLAM_THROW_IF_NOT(ConfigError, !options.features.superpoint.model_path.empty())
         << "feature " << setup.label << " needs features.superpoint.model_path in the engine config";

@@ -5,6 +5,7 @@
 
 #include "slam/core/check.h"
 #include "slam/core/json_fields.h"
+#include "slam/experiment/job_plan.h"
 
 namespace duskmap {
 namespace {
@@ -72,6 +73,13 @@ void ExperimentOptions::Check() const {
       << "frame_step: must be >= 1, got " << frame_step;
   SLAM_THROW_IF_NOT(ConfigError, max_frames_per_session >= 0)
       << "max_frames_per_session: must be >= 0, got " << max_frames_per_session;
+  for (const auto& [session, hh_mm] : session_clock_times) {
+    try {
+      ParseClockMinutes(hh_mm);
+    } catch (const ConfigError& e) {
+      SLAM_THROW(ConfigError) << "session_clock_times." << session << ": " << e.what();
+    }
+  }
 }
 
 ExperimentOptions ReadExperimentOptions(const std::string& path) {
@@ -108,6 +116,7 @@ ExperimentOptions ReadExperimentOptions(const std::string& path) {
   options.engine_config = ResolveRelative(options.engine_config, base);
   root.Read("frame_step", &options.frame_step);
   root.Read("max_frames_per_session", &options.max_frames_per_session);
+  root.Read("session_clock_times", &options.session_clock_times);
   root.RejectUnknown();
   try {
     options.Check();

@@ -3,6 +3,7 @@
 // JSON file under configs/ (unknown keys are rejected).
 #pragma once
 
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -40,6 +41,11 @@ struct ExperimentOptions {
   std::string engine_config;  // JSON with the engine's options; empty = paper defaults
   int frame_step = 1;         // use every frame_step-th frame (quick profiles)
   int max_frames_per_session = 0;  // 0 = all frames
+  // Local clock time ("HH:MM") per session name, for readers that do not
+  // store one (RTAB-Map databases and image releases) or to override the
+  // dataset's: the "closest in time" map (1|2|...|6) and the consecutive
+  // pairs' gap classes need them.
+  std::map<std::string, std::string> session_clock_times;
 
   // Throws ConfigError naming the field.
   void Check() const;

@@ -1,5 +1,6 @@
 #include "slam/experiment/report_builder.h"
 
+#include <array>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -20,6 +21,7 @@ struct CellTotals {
   int no_candidate = 0;
   int correct = 0;
   int wrong = 0;
+  std::array<int, 3> within = {0, 0, 0};  // per threshold: 0.25 m/2°, 0.5 m/5°, 5 m/10°
   bool has_ground_truth = false;
   double inliers_pct_sum = 0.0;  // weighted by re-localized frames
   double jump_mm_sum = 0.0;      // weighted by re-localized frames
@@ -29,6 +31,7 @@ struct CellTotals {
     relocalized += s.num_relocalized;
     no_candidate += s.num_no_candidate;
     correct += s.num_within_threshold[1];
+    for (size_t i = 0; i < within.size(); ++i) within[i] += s.num_within_threshold[i];
     wrong += s.num_wrong;
     has_ground_truth = has_ground_truth || s.has_ground_truth;
     inliers_pct_sum += s.mean_inliers_pct * s.num_relocalized;
@@ -108,7 +111,40 @@ std::vector<ReportTable> RelocalizationTables(const ExperimentOptions& options,
   FillPaper(paper, table, "relocalization_pct", &relocalized);
   FillPaper(paper, table, "visual_inliers_pct", &inliers);
   FillPaper(paper, table, "jumps_mm", &jumps);
-  return {relocalized, inliers, jumps, correct, wrong, no_candidate};
+  std::vector<ReportTable> tables = {relocalized, inliers, jumps, correct, wrong, no_candidate};
+
+  // Every localization job together (each once: the closest-in-time row
+  // reuses the single maps' jobs), at the three thresholds: what the paper,
+  // without ground truth, could not report.
+  std::map<std::string, CellTotals> by_feature;
+  std::set<std::string> counted;
+  for (const MatrixCell& cell : plan.cells) {
+    const auto it = results.localization.find(cell.job_id);
+    if (it == results.localization.end() || !counted.insert(cell.job_id).second) continue;
+    by_feature[cell.feature].Add(it->second);
+  }
+  bool any_truth = false;
+  for (const auto& [feature, t] : by_feature) any_truth = any_truth || t.has_ground_truth;
+  if (any_truth) {
+    const char* labels[3] = {"0.25 m/2°", "0.5 m/5°", "5 m/10°"};
+    std::vector<std::string> threshold_rows;
+    for (const char* label : labels) threshold_rows.push_back(std::string("correct within ") + label + " (%)");
+    for (const char* label : labels) threshold_rows.push_back(std::string("wrong beyond ") + label + " (count)");
+    ReportTable thresholds("Re-localizations against ground truth at three thresholds, every "
+                           "localization job together",
+                           threshold_rows, options.features, 1);
+    for (const std::string& feature : options.features) {
+      const auto found = by_feature.find(feature);
+      if (found == by_feature.end() || found->second.frames == 0) continue;
+      const CellTotals& f = found->second;
+      for (size_t i = 0; i < 3; ++i) {
+        thresholds.SetMeasured(threshold_rows[i], feature, f.Pct(f.within[i]));
+        thresholds.SetMeasured(threshold_rows[3 + i], feature, f.relocalized - f.within[i]);
+      }
+    }
+    tables.push_back(thresholds);
+  }
+  return tables;
 }
 
 std::vector<ReportTable> MapTables(const ExperimentOptions& options,
@@ -117,6 +153,9 @@ std::vector<ReportTable> MapTables(const ExperimentOptions& options,
   const auto rows = MapRows(options, true);
   ReportTable nodes("Graph size (nodes)", rows, options.features);
   ReportTable memory("Memory needed for localization (MB)", rows, options.features, 1);
+  ReportTable per_node("Memory needed for localization per node (KiB); the paper's: (RAM - "
+                       "constant overhead) / nodes",
+                       rows, options.features, 1);
   std::vector<std::string> ate_rows;
   for (const std::string& row : rows) {
     if (ParseMapSpec(row).kind != MapKind::kSingle) ate_rows.push_back(row);
@@ -131,6 +170,7 @@ std::vector<ReportTable> MapTables(const ExperimentOptions& options,
       size_t bytes = 0;
       for (const auto& [component, component_bytes] : s.memory_bytes) bytes += component_bytes;
       memory.SetMeasured(row, feature, bytes / (1024.0 * 1024.0));
+      if (s.num_nodes > 0) per_node.SetMeasured(row, feature, bytes / 1024.0 / s.num_nodes);
       if (s.ate_mm >= 0.0 && ParseMapSpec(row).kind != MapKind::kSingle) {
         ate.SetMeasured(row, feature, s.ate_mm);
       }
@@ -139,7 +179,19 @@ std::vector<ReportTable> MapTables(const ExperimentOptions& options,
   FillPaper(paper, "table_ram_mb", "nodes", &nodes);
   FillPaper(paper, "table_ram_mb", "ram_mb", &memory);
   FillPaper(paper, "table_ate_mm", "", &ate);
-  std::vector<ReportTable> tables = {nodes, memory, ate};
+  if (paper) {
+    for (const std::string& row : rows) {
+      for (const std::string& feature : options.features) {
+        const auto ram = paper->Value({"table_ram_mb", "ram_mb", row}, feature);
+        const auto overhead = paper->Value({"table_ram_mb", "constant_overhead_mb"}, feature);
+        const auto paper_nodes = paper->Value({"table_ram_mb", "nodes", row}, feature);
+        if (ram && overhead && paper_nodes && *paper_nodes > 0) {
+          per_node.SetPaper(row, feature, (*ram - *overhead) * 1024.0 / *paper_nodes);
+        }
+      }
+    }
+  }
+  std::vector<ReportTable> tables = {nodes, memory, per_node, ate};
 
   if (HasRow(options, kReduced) && HasRow(options, kFullMerge)) {
     ReportTable reduced("Graph reduction: nodes left in 1-2-3-4-5-6 and reduction (%)",
@@ -277,7 +329,7 @@ std::vector<ReportTable> ConsecutiveTables(const ExperimentOptions& options,
 std::string CellsCsv(const ExperimentPlan& plan, const ExperimentResults& results) {
   std::ostringstream out;
   out << "feature,row,session,job,frames,relocalized_pct,correct_pct,wrong,no_candidate_pct,"
-         "mean_inliers_pct,mean_jump_mm\n";
+         "mean_inliers_pct,mean_jump_mm,correct_0.25m_2deg_pct,correct_5m_10deg_pct\n";
   for (const MatrixCell& cell : plan.cells) {
     const auto it = results.localization.find(cell.job_id);
     if (it == results.localization.end() || it->second.num_frames == 0) continue;
@@ -287,7 +339,9 @@ std::string CellsCsv(const ExperimentPlan& plan, const ExperimentResults& result
         << s.num_frames << "," << 100.0 * s.num_relocalized / frames << ","
         << (s.has_ground_truth ? 100.0 * s.num_within_threshold[1] / frames : -1.0) << ","
         << s.num_wrong << "," << 100.0 * s.num_no_candidate / frames << "," << s.mean_inliers_pct
-        << "," << s.mean_jump_mm << "\n";
+        << "," << s.mean_jump_mm << ","
+        << (s.has_ground_truth ? 100.0 * s.num_within_threshold[0] / frames : -1.0) << ","
+        << (s.has_ground_truth ? 100.0 * s.num_within_threshold[2] / frames : -1.0) << "\n";
   }
   return out.str();
 }

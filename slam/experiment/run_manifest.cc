@@ -13,28 +13,37 @@ namespace {
 constexpr const char* kManifestFile = "run.json";
 }  // namespace
 
-SessionClock SessionClockOf(const std::vector<SessionInfo>& sessions) {
+SessionClock SessionClockOf(const std::vector<SessionInfo>& sessions,
+                            const std::map<std::string, std::string>& configured) {
   SessionClock clock;
   for (const SessionInfo& session : sessions) {
     if (session.clock_time) clock[session.name] = ParseClockMinutes(*session.clock_time);
   }
+  for (const auto& [name, hh_mm] : configured) clock[name] = ParseClockMinutes(hh_mm);
   return clock;
 }
 
-void SelectRunnableFeatures(const ExperimentOptions& options, const std::string& superpoint_model,
+void SelectRunnableFeatures(const ExperimentOptions& options, const FeatureModels& models,
                             RunManifest* manifest) {
   manifest->features.clear();
   manifest->skipped_features.clear();
+  const auto missing = [](const std::string& model, const char* key) -> std::string {
+    if (model.empty()) {
+      return std::string("no model configured (") + key +
+             " in the engine config; see docs/features.md)";
+    }
+    if (!fs::exists(model)) return model + ": no such model file";
+    return "";
+  };
   for (const std::string& label : options.features) {
     const FeatureSetup& setup = FeatureSetupByLabel(label);
-    if (setup.needs_model && superpoint_model.empty()) {
-      manifest->skipped_features.push_back(
-          {label, "no SuperPoint model configured (features.superpoint.model_path in the "
-                  "engine config; see docs/features.md)"});
-      continue;
+    std::string reason;
+    if (setup.needs_model) reason = missing(models.superpoint, "features.superpoint.model_path");
+    if (reason.empty() && setup.matcher == "superglue") {
+      reason = missing(models.superglue, "matcher.superglue.model_path");
     }
-    if (setup.needs_model && !fs::exists(superpoint_model)) {
-      manifest->skipped_features.push_back({label, superpoint_model + ": no such model file"});
+    if (!reason.empty()) {
+      manifest->skipped_features.push_back({label, reason});
       continue;
     }
     manifest->features.push_back(label);

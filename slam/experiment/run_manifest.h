@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -30,12 +31,21 @@ struct RunManifest {
   int shard_count = 1;
 };
 
-// Clock time of every dataset session that has one.
-SessionClock SessionClockOf(const std::vector<SessionInfo>& sessions);
+// Clock time of every dataset session that has one; `configured` (the
+// experiment config's session_clock_times) adds or overrides times by name.
+SessionClock SessionClockOf(const std::vector<SessionInfo>& sessions,
+                            const std::map<std::string, std::string>& configured = {});
+
+// The model files the feature columns need (empty = not configured).
+struct FeatureModels {
+  std::string superpoint;  // features.superpoint.model_path (SP and SG)
+  std::string superglue;   // matcher.superglue.model_path (SG)
+};
 
 // Splits the configured feature columns into those that can run with these
-// engine options and those skipped (SuperPoint/SuperGlue without a model).
-void SelectRunnableFeatures(const ExperimentOptions& options, const std::string& superpoint_model,
+// models and those skipped (SuperPoint without its model, SuperGlue without
+// either), each with the reason.
+void SelectRunnableFeatures(const ExperimentOptions& options, const FeatureModels& models,
                             RunManifest* manifest);
 
 void WriteRunManifest(const RunManifest& manifest, const std::filesystem::path& results_dir);

@@ -34,6 +34,16 @@ TEST(JsonFields, RejectsUnknownKeyWithItsPath) {
   }
 }
 
+TEST(JsonFields, CommentKeyIsAllowedButItsMisspellingIsNot) {
+  const auto json = nlohmann::json::parse(R"({"_comment": "why these values", "width": 1})");
+  JsonFields fields(json, "cfg.json");
+  int width = 0;
+  fields.Read("width", &width);
+  EXPECT_NO_THROW(fields.RejectUnknown());
+  const auto typo = nlohmann::json::parse(R"({"_coment": "x"})");
+  EXPECT_THROW(JsonFields(typo, "cfg.json").RejectUnknown(), ConfigError);
+}
+
 TEST(JsonFields, RejectsWrongType) {
   const auto json = nlohmann::json::parse(R"({"width": "wide"})");
   JsonFields fields(json, "cfg.json");

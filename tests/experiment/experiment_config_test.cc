@@ -28,6 +28,29 @@ TEST(ReadExperimentOptions, ReadsThePaperMatrix) {
   EXPECT_EQ(options.dataset_path, std::string(DUSKMAP_SOURCE_DIR) + "/data/sunset");
 }
 
+TEST(ReadExperimentOptions, ReadsTheReleasedDataConfigWithItsClockTimes) {
+  const ExperimentOptions options = ReadExperimentOptions(
+      std::string(DUSKMAP_SOURCE_DIR) + "/configs/paper_matrix_released.json");
+  EXPECT_EQ(options.dataset_format, "rtabmap-db");
+  EXPECT_EQ(options.maps.size(), 12u);
+  ASSERT_EQ(options.session_clock_times.size(), 12u);
+  EXPECT_EQ(options.session_clock_times.at("1"), "16:46");
+  EXPECT_EQ(options.session_clock_times.at("F"), "19:42");
+}
+
+TEST(ReadExperimentOptions, RejectsAMalformedClockTimeNamingTheSession) {
+  const std::string path = WriteTemp(
+      "clock.json", R"({"dataset": {"path": "d"}, "features": ["SI"], "maps": ["1"],
+                       "localization_sessions": ["A"], "session_clock_times": {"A": "25:99"}})");
+  try {
+    ReadExperimentOptions(path);
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("session_clock_times.A"), std::string::npos) << e.what();
+  }
+}
+
 TEST(ReadExperimentOptions, RejectsUnknownKeyNamingFileAndKey) {
   const std::string path = WriteTemp(
       "unknown.json", R"({"dataset": {"path": "d"}, "features": ["SI"], "maps": ["1"],

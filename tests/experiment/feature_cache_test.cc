@@ -11,6 +11,12 @@
 namespace duskmap {
 namespace {
 
+SessionInfo NamedSession(const std::string& name) {
+  SessionInfo session;
+  session.name = name;
+  return session;
+}
+
 namespace fs = std::filesystem;
 
 class FeatureCacheTest : public ::testing::Test {
@@ -99,7 +105,7 @@ TEST_F(FeatureCacheTest, RoundTripKeepsMetadataAndFeaturesButNoImages) {
 TEST_F(FeatureCacheTest, BinaryDescriptorsKeepTheirKind) {
   const FrameFeatures binary = Features(3, DescriptorKind::kBinary);
   {
-    FeatureCacheWriter writer(path_, "orb", SessionInfo{"A"});
+    FeatureCacheWriter writer(path_, "orb", NamedSession("A"));
     writer.Append(Frame(0, false), binary);
     writer.Close();
   }
@@ -113,7 +119,7 @@ TEST_F(FeatureCacheTest, BinaryDescriptorsKeepTheirKind) {
 
 TEST_F(FeatureCacheTest, UnclosedOrTruncatedFileIsAnErrorNamingIt) {
   {
-    FeatureCacheWriter writer(path_, "orb", SessionInfo{"A"});
+    FeatureCacheWriter writer(path_, "orb", NamedSession("A"));
     writer.Append(Frame(0, false), Features(4, DescriptorKind::kBinary));
     writer.Append(Frame(1, false), Features(4, DescriptorKind::kBinary));
     writer.Close();
@@ -141,7 +147,7 @@ TEST_F(FeatureCacheTest, OtherFilesAreRejected) {
 TEST_F(FeatureCacheTest, InconsistentFeaturesAreRefused) {
   FrameFeatures bad = Features(3, DescriptorKind::kFloat);
   bad.points_in_camera.pop_back();
-  FeatureCacheWriter writer(path_, "surf", SessionInfo{"A"});
+  FeatureCacheWriter writer(path_, "surf", NamedSession("A"));
   EXPECT_THROW(writer.Append(Frame(0, false), bad), InputError);
 }
 

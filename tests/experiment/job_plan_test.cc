@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "slam/core/check.h"
+#include "slam/experiment/run_manifest.h"
 
 namespace duskmap {
 namespace {
@@ -106,6 +107,19 @@ TEST(SelectShard, ShardsPartitionTheCellsAndKeepDependencies) {
   for (const MatrixCell& cell : plan.cells) all.insert(cell.job_id + "@" + cell.row);
   EXPECT_EQ(cell_jobs, all);
   EXPECT_THROW(SelectShard(plan, 3, 3), ConfigError);
+}
+
+TEST(SessionClockOf, ConfiguredTimesFillInAndOverrideTheDatasets) {
+  // A database stores no clock time ("1"); a synthetic session does ("A").
+  SessionInfo stored_none;
+  stored_none.name = "1";
+  SessionInfo stored;
+  stored.name = "A";
+  stored.clock_time = "16:51";
+  EXPECT_EQ(SessionClockOf({stored_none, stored}).count("1"), 0u);
+  const SessionClock clock = SessionClockOf({stored_none, stored}, {{"1", "16:46"}, {"A", "17:00"}});
+  EXPECT_EQ(clock.at("1"), 16 * 60 + 46);
+  EXPECT_EQ(clock.at("A"), 17 * 60);
 }
 
 }  // namespace

@@ -83,6 +83,41 @@ TEST(BuildReport, AggregatesCellsOverSessionsBesideThePaper) {
   EXPECT_FALSE(report.cells_csv.empty());
   EXPECT_FALSE(report.consecutive_csv.empty());
 
+  // The three ground-truth thresholds over every SI localization job, each
+  // once (maps 1, 6 and 1+6, sessions A and F; 1|6 reuses 1/A and 6/F).
+  const ReportTable* thresholds = nullptr;
+  for (const ReportTable& t : report.tables) {
+    if (t.caption().rfind("Re-localizations against ground truth at three thresholds", 0) == 0) {
+      thresholds = &t;
+    }
+  }
+  ASSERT_NE(thresholds, nullptr);
+  int frames = 0, num_relocalized = 0, within_025 = 0, within_5 = 0;
+  for (const char* id : {"localize/SI/1/A", "localize/SI/1/F", "localize/SI/6/A", "localize/SI/6/F",
+                         "localize/SI/1+6/A", "localize/SI/1+6/F"}) {
+    const LocalizationJobSummary& s = results.localization.at(id);
+    frames += s.num_frames;
+    num_relocalized += s.num_relocalized;
+    within_025 += s.num_within_threshold[0];
+    within_5 += s.num_within_threshold[2];
+  }
+  EXPECT_NEAR(*thresholds->At("correct within 0.25 m/2° (%)", "SI").measured,
+              100.0 * within_025 / frames, 1e-9);
+  EXPECT_DOUBLE_EQ(*thresholds->At("wrong beyond 5 m/10° (count)", "SI").measured,
+                   num_relocalized - within_5);
+
+  // Memory per node: the fake maps hold 1.5 MiB in 200 nodes per session; the
+  // paper's SIFT map 1 needs (167 - 90) MB over 202 nodes.
+  bool per_node_found = false;
+  for (const ReportTable& t : report.tables) {
+    if (t.caption().rfind("Memory needed for localization per node", 0) != 0) continue;
+    per_node_found = true;
+    EXPECT_DOUBLE_EQ(*t.At("1", "SI").measured, 1.5 * 1024.0 / 200.0);
+    EXPECT_NEAR(*t.At("1", "SI").paper, (167.0 - 90.0) * 1024.0 / 202.0, 1e-9);
+    EXPECT_DOUBLE_EQ(*t.At("1+6", "SI").measured, 1.5 * 1024.0 / 400.0);
+  }
+  EXPECT_TRUE(per_node_found);
+
   const fs::path out = dir / "report";
   WriteReport(report, out);
   EXPECT_TRUE(fs::exists(out / "tables.md"));
