@@ -4,6 +4,11 @@
 
 namespace duskmap {
 
+EngineOptions::EngineOptions() {
+  optimizer.max_error_ratio = 0.0;                    // RGBD/OptimizeMaxError (paper: 0)
+  loop_closure.vocabulary.bad_signature_ratio = 0.2;  // Kp/BadSignRatio (paper: 0.2)
+}
+
 void OdometryNoiseOptions::Check() const {
   SLAM_THROW_IF_NOT(ConfigError, linear_sigma_m > 0.0)
       << "EngineOptions.odometry.linear_sigma_m: must be > 0, got " << linear_sigma_m;

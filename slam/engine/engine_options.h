@@ -52,6 +52,12 @@ struct LocalizationOptions {
 };
 
 struct EngineOptions {
+  // The modules' own defaults are the reference's current ones; the engine's
+  // are the paper's runs (spec appendix A), which differ in two places:
+  // RGBD/OptimizeMaxError 0 (no rejection of optimisations) and
+  // Kp/BadSignRatio 0.2. configs/engine_paper.json spells them all out.
+  EngineOptions();
+
   FeatureOptions features;
   LoopClosureOptions loop_closure;
   ProximityOptions proximity;

@@ -62,9 +62,11 @@ ReductionResult ReduceNode(NodeId node, Map* map) {
       merged.to = n;
       merged.type = LinkType::kMerged;
       merged.from_from_to = loop.node_from_other.Inverse() * neighbour.node_from_other;
-      merged.information = loop.link.information(0, 0) < neighbour.link.information(0, 0)
-                               ? loop.link.information
-                               : neighbour.link.information;
+      // A merged link chains the loop and the odometry link: their
+      // covariances add (spec §8, NeighborMerged).
+      const Eigen::Matrix<double, 6, 6> covariance =
+          loop.link.information.inverse() + neighbour.link.information.inverse();
+      merged.information = covariance.inverse();
       map->AddLink(merged);
       result.merged_links.push_back(merged);
     }

@@ -29,6 +29,16 @@ TEST(ReadEngineOptions, ReadsNestedValues) {
   EXPECT_EQ(o.Registration().pnp.random_seed, 9u);
 }
 
+TEST(EngineOptions, DefaultsAreThePapersSettings) {
+  // configs/engine_paper.json (the paper's runs) and the built-in defaults
+  // must agree, so a config without engine_config runs the paper's settings.
+  const EngineOptions paper =
+      ReadEngineOptionsFile(std::string(DUSKMAP_SOURCE_DIR) + "/configs/engine_paper.json");
+  EXPECT_EQ(EngineOptionsToJson(EngineOptions()).dump(2), EngineOptionsToJson(paper).dump(2));
+  EXPECT_DOUBLE_EQ(EngineOptions().optimizer.max_error_ratio, 0.0);
+  EXPECT_DOUBLE_EQ(EngineOptions().loop_closure.vocabulary.bad_signature_ratio, 0.2);
+}
+
 TEST(ReadEngineOptions, RejectsUnknownKeysWithPath) {
   JsonFields fields(nlohmann::json::parse(R"({"mapping": {"reduce": true}})"), "engine.json");
   try {

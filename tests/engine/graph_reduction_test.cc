@@ -55,7 +55,8 @@ TEST(ReduceNode, RemovesLoopNodeAndReattachesNeighbours) {
   EXPECT_EQ(to6.type, LinkType::kMerged);
   const Rigid3d expected = map.node(2).map_from_body.Inverse() * map.node(6).map_from_body;
   EXPECT_TRUE(to6.from_from_to.ToMatrix().isApprox(expected.ToMatrix(), 1e-12));
-  EXPECT_DOUBLE_EQ(to6.information(0, 0), 50.0);  // the weaker of loop (50) and odometry (100)
+  // Chained loop (information 50) and odometry (100): covariances add.
+  EXPECT_NEAR(to6.information(0, 0), 1.0 / (1.0 / 50.0 + 1.0 / 100.0), 1e-9);
   // Still one connected group of sessions.
   EXPECT_EQ(map.ConnectedSessionGroups().size(), 1u);
 }
