@@ -6,6 +6,7 @@
 
 #include "slam/core/check.h"
 #include "slam/core/timer.h"
+#include "slam/map/map_vocabulary.h"
 #include "slam/retrieval/proximity.h"
 
 namespace duskmap {
@@ -31,9 +32,10 @@ Localizer::Localizer(const Map& map, const EngineOptions& options)
   extractor_ = CreateFeatureExtractor(options_.features);
   matcher_ = CreateFeatureMatcher(options_.matcher);
   lcd_ = std::make_unique<LoopClosureDetector>(options_.LoopClosure());
-  for (const auto& [id, node] : map_.nodes()) {
-    lcd_->AddMapNode(id, node.session, node.features.Decode());
-  }
+  // The mapper's vocabulary, restored exactly from the map (as the reference
+  // loads it from its database); every node is a candidate place.
+  lcd_->ImportMap(MapVocabularySnapshot(map_),
+                  [this](NodeId id) { return map_.node(id).session; });
   for (const auto& [key, link] : map_.links()) lcd_->graph().AddLink(link.from, link.to, link.type);
   if (options_.localization.odometry_cache_size > 0) {
     OdometryCacheOptions cache;

@@ -12,9 +12,11 @@
 // localization; a transform the validation rejects lets the next candidate be
 // tried.
 //
-// The loop-closure state (vocabulary, inverted index, place graph, Bayes
-// filter) is rebuilt from the map's node descriptors in id order, so an
-// in-memory map and the same map saved and loaded give identical results.
+// The loop-closure state starts from the vocabulary the map stores (words,
+// node word counts, n_j: the mapper's at the end of mapping, restored
+// exactly), the map's links as the place graph, and every node as a
+// candidate place; an in-memory map and the same map saved and loaded give
+// identical results.
 #pragma once
 
 #include <memory>

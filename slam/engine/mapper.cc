@@ -8,6 +8,7 @@
 #include "slam/engine/feature_options_json.h"
 #include "slam/engine/graph_reduction.h"
 #include "slam/engine/map_optimization.h"
+#include "slam/map/map_vocabulary.h"
 #include "slam/retrieval/proximity.h"
 
 namespace duskmap {
@@ -127,7 +128,6 @@ void Mapper::AddNode(const RgbdFrame& frame, FrameFeatures features, MappingFram
 
   node.features = CompactFeatures::Encode(features, options_.mapping.descriptor_storage);
   current_features_ = std::move(features);  // the new node's features as extracted
-  node.word_ids = lcd_->vocabulary().inverted_index().NodeWords(node.id);
   const NodeId id = node.id;
   map_.AddNode(std::move(node));
   if (previous_node_ != 0) {
@@ -234,23 +234,9 @@ void Mapper::ReduceOldestShortTerm(size_t keep, MappingFrameResult* result) {
 }
 
 void Mapper::SnapshotWords() {
-  std::set<WordId> live;
-  for (const auto& [id, node] : map_.nodes()) live.insert(node.word_ids.begin(), node.word_ids.end());
-  MapWords words;
-  const int cols = map_.metadata().descriptor_cols;
-  const int type = map_.metadata().descriptor_cv_type;
-  if (!live.empty() && type >= 0) {
-    words.descriptors = cv::Mat(static_cast<int>(live.size()), cols, type);
-    const size_t row_bytes = words.descriptors.step[0];
-    int row = 0;
-    for (WordId word : live) {
-      SLAM_CHECK(lcd_->vocabulary().ContainsWord(word));
-      std::copy_n(lcd_->vocabulary().WordDescriptor(word), row_bytes, words.descriptors.ptr(row));
-      words.ids.push_back(word);
-      ++row;
-    }
-  }
-  map_.SetWords(std::move(words));
+  // The vocabulary as it ends the mapping: words, each node's counts and n_j,
+  // and the next word id; the localizer imports it (map_vocabulary.h).
+  SetMapVocabulary(lcd_->vocabulary().Export(), &map_);
 }
 
 Map Mapper::Finish() {

@@ -96,7 +96,7 @@ MappingRun BuildMap(const std::vector<FrameSource*>& sessions, const EngineOptio
   const LoopClosureDetector& lcd = mapper.loop_closure();
   run.memory = ComputeMapMemory(
       run.map, lcd.filter().TransitionBytes() + lcd.filter().num_places() * sizeof(double));
-  run.memory.words_index_bytes = lcd.vocabulary().MemoryBytes();
+  run.memory.words_index_bytes += lcd.vocabulary().MemoryBytes();  // + the map's stored words
   for (auto& [stage, values] : times) run.timings[stage] = SummarizeTimes(values);
   run.wall_s = wall.ElapsedMs() / 1000.0;
   return run;
@@ -155,7 +155,7 @@ LocalizationRun LocalizeSession(const Map& map, FrameSource& session,
   const LoopClosureDetector& lcd = localizer.loop_closure();
   run.memory = ComputeMapMemory(
       map, lcd.filter().TransitionBytes() + lcd.filter().num_places() * sizeof(double));
-  run.memory.words_index_bytes = lcd.vocabulary().MemoryBytes();
+  run.memory.words_index_bytes += lcd.vocabulary().MemoryBytes();  // + the map's stored words
   for (auto& [stage, values] : times) run.timings[stage] = SummarizeTimes(values);
   run.wall_s = wall.ElapsedMs() / 1000.0;
   return run;

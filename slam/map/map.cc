@@ -19,6 +19,9 @@ void Map::CheckDescriptors(const MapNode& node) {
   const CompactFeatures& f = node.features;
   SLAM_THROW_IF_NOT(InputError, node.word_ids.size() <= f.size())
       << "Map: node " << node.id << " has more word ids than keypoints";
+  SLAM_THROW_IF_NOT(InputError, node.word_counts.size() == node.word_ids.size())
+      << "Map: node " << node.id << " has " << node.word_counts.size() << " word counts for "
+      << node.word_ids.size() << " words";
   if (f.codes().empty()) return;
   SLAM_THROW_IF_NOT(InputError, f.storage() == metadata_.descriptor_storage)
       << "Map: node " << node.id << " keeps its descriptors as "

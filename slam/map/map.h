@@ -57,9 +57,13 @@ struct MapNode {
   // Keypoints, descriptors, 3D points (camera frame), kept compact;
   // features.Decode() gives the FrameFeatures that registration uses.
   CompactFeatures features;
-  // The node's words as the vocabulary held them when the map was saved
-  // (distinct, sorted; see docs/engine.md for how the vocabulary is restored).
+  // The node's words as the vocabulary held them when mapping finished:
+  // distinct ids (increasing), each word's occurrences in the node, and n_j,
+  // the node's feature count for tf-idf. With the map's words they restore the
+  // vocabulary exactly (map_vocabulary.h).
   std::vector<WordId> word_ids;
+  std::vector<int32_t> word_counts;  // parallel to word_ids, >= 1
+  int32_t vocabulary_features = 0;   // n_j
 
   Rigid3d map_from_camera() const { return map_from_body * body_from_camera; }
 };
@@ -68,6 +72,7 @@ struct MapNode {
 struct MapWords {
   std::vector<WordId> ids;  // increasing
   cv::Mat descriptors;      // one row per id, same type/cols as the nodes' descriptors
+  WordId next_word_id = 1;  // the id a new word would get (ids are never reused)
 };
 
 class Map {

@@ -173,6 +173,14 @@ std::vector<WordId> DecodeWordIds(const Blob& blob, const std::string& what) {
   return DecodeArray<WordId>(blob, sizeof(WordId), what);
 }
 
+Blob EncodeInt32s(const std::vector<int32_t>& values) {
+  return EncodeArray(values.data(), values.size());
+}
+
+std::vector<int32_t> DecodeInt32s(const Blob& blob, const std::string& what) {
+  return DecodeArray<int32_t>(blob, sizeof(int32_t), what);
+}
+
 Blob EncodeMatrix(const cv::Mat& matrix) {
   if (matrix.empty()) return Blob();
   const cv::Mat continuous = matrix.isContinuous() ? matrix : matrix.clone();

@@ -46,6 +46,8 @@ std::vector<float> DecodeFloats(const Blob& blob, const std::string& what);
 
 Blob EncodeWordIds(const std::vector<WordId>& ids);
 std::vector<WordId> DecodeWordIds(const Blob& blob, const std::string& what);
+Blob EncodeInt32s(const std::vector<int32_t>& values);
+std::vector<int32_t> DecodeInt32s(const Blob& blob, const std::string& what);
 
 // The raw rows of a continuous matrix; decoding needs rows, cols and type.
 Blob EncodeMatrix(const cv::Mat& matrix);

@@ -27,7 +27,8 @@ CREATE TABLE nodes(id INTEGER PRIMARY KEY, session INTEGER NOT NULL, frame_index
   timestamp_s REAL NOT NULL, map_pose BLOB NOT NULL, odom_pose BLOB NOT NULL,
   body_from_camera BLOB NOT NULL, camera BLOB NOT NULL, truth_pose BLOB,
   num_features INTEGER NOT NULL, keypoints BLOB NOT NULL, points BLOB NOT NULL,
-  descriptors BLOB NOT NULL, descriptor_scales BLOB NOT NULL, word_ids BLOB NOT NULL);
+  descriptors BLOB NOT NULL, descriptor_scales BLOB NOT NULL, word_ids BLOB NOT NULL,
+  word_counts BLOB NOT NULL, vocabulary_features INTEGER NOT NULL);
 CREATE TABLE links(from_id INTEGER NOT NULL, to_id INTEGER NOT NULL, type INTEGER NOT NULL,
   transform BLOB NOT NULL, information BLOB NOT NULL, PRIMARY KEY(from_id, to_id));
 CREATE TABLE words(id INTEGER PRIMARY KEY, descriptor BLOB NOT NULL);
@@ -50,7 +51,8 @@ void WriteMeta(SqliteDatabase& db, const Map& map) {
       {"num_sessions", std::to_string(map.sessions().size())},
       {"num_nodes", std::to_string(map.nodes().size())},
       {"num_links", std::to_string(map.links().size())},
-      {"num_words", std::to_string(map.words().ids.size())}};
+      {"num_words", std::to_string(map.words().ids.size())},
+      {"next_word_id", std::to_string(map.words().next_word_id)}};
   SqliteStatement insert = db.Prepare("INSERT INTO meta VALUES(?, ?)");
   for (const auto& [key, value] : meta) {
     insert.BindText(1, key);
@@ -75,7 +77,7 @@ void WriteSessions(SqliteDatabase& db, const Map& map) {
 
 void WriteNodes(SqliteDatabase& db, const Map& map) {
   SqliteStatement insert =
-      db.Prepare("INSERT INTO nodes VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+      db.Prepare("INSERT INTO nodes VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   for (const auto& [id, n] : map.nodes()) {
     insert.BindInt(1, id);
     insert.BindInt(2, n.session);
@@ -98,6 +100,8 @@ void WriteNodes(SqliteDatabase& db, const Map& map) {
     scales.insert(scales.end(), n.features.row_steps().begin(), n.features.row_steps().end());
     insert.BindBlob(14, EncodeFloats(scales));
     insert.BindBlob(15, EncodeWordIds(n.word_ids));
+    insert.BindBlob(16, EncodeInt32s(n.word_counts));
+    insert.BindInt(17, n.vocabulary_features);
     insert.Run();
   }
 }
@@ -278,6 +282,11 @@ MapNode ReadNodeRow(const SqliteStatement& row, const MapMetadata& m, const std:
                                           std::move(offsets), std::move(steps),
                                           std::move(keypoints), std::move(points));
   n.word_ids = DecodeWordIds(row.Blob(14), what + " word ids");
+  n.word_counts = DecodeInt32s(row.Blob(15), what + " word counts");
+  SLAM_THROW_IF_NOT(InputError, n.word_counts.size() == n.word_ids.size())
+      << what << ": " << n.word_counts.size() << " word counts for " << n.word_ids.size()
+      << " words";
+  n.vocabulary_features = static_cast<int32_t>(row.Int(16));
   return n;
 }
 
@@ -285,7 +294,7 @@ void ReadNodes(SqliteDatabase& db, const MapMetadata& m, Map* map) {
   SqliteStatement select = db.Prepare(
       "SELECT id, session, frame_index, timestamp_s, map_pose, odom_pose, body_from_camera, "
       "camera, truth_pose, num_features, keypoints, points, descriptors, descriptor_scales, "
-      "word_ids FROM nodes "
+      "word_ids, word_counts, vocabulary_features FROM nodes "
       "ORDER BY id");
   while (select.Step()) map->AddNode(ReadNodeRow(select, m, db.path()));
 }
@@ -309,8 +318,9 @@ void ReadLinks(SqliteDatabase& db, Map* map) {
   }
 }
 
-void ReadWords(SqliteDatabase& db, const MapMetadata& m, Map* map) {
+void ReadWords(SqliteDatabase& db, const MapMetadata& m, Map* map, int64_t next_word_id) {
   MapWords words;
+  words.next_word_id = static_cast<WordId>(next_word_id);
   std::vector<cv::Mat> rows;
   SqliteStatement select = db.Prepare("SELECT id, descriptor FROM words ORDER BY id");
   while (select.Step()) {
@@ -368,7 +378,7 @@ Map LoadMap(const std::string& path, const MapLoadOptions& options) {
   ReadNodes(db, metadata, &map);
   map.ReserveNodeIdsUpTo(MetaInt(meta, "last_node_id", path));
   ReadLinks(db, &map);
-  ReadWords(db, metadata, &map);
+  ReadWords(db, metadata, &map, MetaInt(meta, "next_word_id", path));
   CheckCounts(meta, map, path);
   return map;
 }

@@ -20,7 +20,7 @@
 
 namespace duskmap {
 
-inline constexpr int kMapSchemaVersion = 2;  // 2: compact node features
+inline constexpr int kMapSchemaVersion = 3;  // 2: compact node features; 3: word counts, n_j, next word id
 
 struct MapLoadOptions {
   std::string expected_feature_type;  // "" accepts any; otherwise must equal the map's

@@ -158,6 +158,10 @@ void KdForest::Rebuild() {
     roots_.push_back(Divide(&idx, 0, idx.size()));
   }
   RenumberByLeaves();
+  // The trees grew node by node; keep only what they use (a map loaded for
+  // localization is built once and never grows).
+  nodes_.shrink_to_fit();
+  pool_.shrink_to_fit();
 }
 
 void KdForest::RenumberByLeaves() {

@@ -57,6 +57,8 @@ void ExpectNodesEqual(const MapNode& a, const MapNode& b) {
   EXPECT_EQ(a.features.row_steps(), b.features.row_steps());
   EXPECT_EQ(fa.kind, fb.kind);
   EXPECT_EQ(a.word_ids, b.word_ids);
+  EXPECT_EQ(a.word_counts, b.word_counts);
+  EXPECT_EQ(a.vocabulary_features, b.vocabulary_features);
 }
 
 void ExpectMapsEqual(const Map& a, const Map& b) {
@@ -203,12 +205,28 @@ TEST_F(MapStoreTest, UnknownSchemaVersionIsRejected) {
   ExpectLoadError("schema version 7 is not supported");
 }
 
-// A map written before compact node features (schema 1) gives a clear error.
+// A map written before the stored vocabulary counts (schema 2) or before
+// compact node features (schema 1) gives a clear error.
 TEST_F(MapStoreTest, OldSchemaVersionAsksForARebuild) {
   SaveMap(testing::MakeTestMap(2), path_);
-  Tamper("UPDATE meta SET value = '1' WHERE key = 'schema_version'");
-  ExpectLoadError("schema version 1 is not supported (this build reads 2; the map was written "
+  Tamper("UPDATE meta SET value = '2' WHERE key = 'schema_version'");
+  ExpectLoadError("schema version 2 is not supported (this build reads 3; the map was written "
                   "by an older duskmap, rebuild it)");
+  Tamper("UPDATE meta SET value = '1' WHERE key = 'schema_version'");
+  ExpectLoadError("schema version 1 is not supported (this build reads 3;");
+}
+
+TEST_F(MapStoreTest, VocabularyRoundTripsWithCountsAndNextWordId) {
+  Map map = testing::MakeTestMap(2);
+  MapWords words = map.words();
+  words.next_word_id = 977;
+  map.SetWords(words);
+  SaveMap(map, path_);
+  const Map loaded = LoadMap(path_);
+  EXPECT_EQ(loaded.words().next_word_id, 977);
+  EXPECT_EQ(loaded.words().ids, map.words().ids);
+  Tamper("UPDATE nodes SET word_counts = x'01000000' WHERE id = 2");
+  ExpectLoadError("node 2: 1 word counts for");
 }
 
 TEST_F(MapStoreTest, QuantizedDescriptorsRoundTrip) {

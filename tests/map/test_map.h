@@ -34,7 +34,12 @@ inline MapNode RandomNode(NodeId id, SessionId session, int num_features, int de
   f.descriptors = cv::Mat(num_features, descriptor_cols, binary ? CV_8U : CV_32F);
   cv::randu(f.descriptors, 0, binary ? 255 : 1);
   n.features = CompactFeatures::Encode(f, storage);
-  for (int i = 0; i < num_features / 2; ++i) n.word_ids.push_back(i % 4 == 0 ? kNoWord : id * 100 + i);
+  for (int i = 0; i < num_features / 2; ++i) {
+    if (i % 4 == 0) continue;
+    n.word_ids.push_back(static_cast<WordId>(id * 100 + i));
+    n.word_counts.push_back(1 + i % 3);
+  }
+  n.vocabulary_features = num_features;
   return n;
 }
 
