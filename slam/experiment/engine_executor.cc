@@ -276,6 +276,10 @@ void EngineJobExecutor::Localize(const Job& job, const fs::path& job_dir) {
   summary.mean_inliers_pct = r.num_relocalized > 0 ? inliers_pct_sum / r.num_relocalized : 0.0;
   summary.mean_features = run.records.empty() ? 0.0 : features_sum / run.records.size();
   summary.mean_times_ms = MeanTimes(run.timings);
+  if (const auto it = run.timings.find("lcd_te"); it != run.timings.end()) {
+    summary.median_lcd_te_ms = it->second.median_ms;
+  }
+  summary.memory_bytes = MemoryComponents(run.memory);
   // Features came from the cache: their extraction time is the extract job's.
   summary.mean_times_ms.features = ExtractionMeanMs(job.extractor, job.session);
   summary.mean_times_ms.total += summary.mean_times_ms.features;

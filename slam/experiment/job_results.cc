@@ -37,7 +37,9 @@ void to_json(nlohmann::json& json, const LocalizationJobSummary& s) {
           {"max_gap_m", s.max_gap_m},
           {"num_within_55cm", s.num_within_55cm},
           {"matched_session_per_frame", s.matched_session_per_frame},
-          {"mean_times_ms", s.mean_times_ms}};
+          {"mean_times_ms", s.mean_times_ms},
+          {"median_lcd_te_ms", s.median_lcd_te_ms},
+          {"memory_bytes", s.memory_bytes}};
 }
 
 void from_json(const nlohmann::json& json, LocalizationJobSummary& s) {
@@ -54,6 +56,8 @@ void from_json(const nlohmann::json& json, LocalizationJobSummary& s) {
   json.at("num_within_55cm").get_to(s.num_within_55cm);
   json.at("matched_session_per_frame").get_to(s.matched_session_per_frame);
   json.at("mean_times_ms").get_to(s.mean_times_ms);
+  json.at("median_lcd_te_ms").get_to(s.median_lcd_te_ms);
+  json.at("memory_bytes").get_to(s.memory_bytes);
 }
 
 void to_json(nlohmann::json& json, const MapJobSummary& s) {

@@ -41,6 +41,10 @@ struct LocalizationJobSummary {
   // ("" when not re-localized), for the over-time figure.
   std::vector<std::string> matched_session_per_frame;
   StageTimesMs mean_times_ms;
+  double median_lcd_te_ms = 0.0;  // median per frame of LCD + transformation estimation
+  // What the localizer held, per component (descriptors, keypoints_points,
+  // words_index: the map's words and the imported vocabulary, graph, filter).
+  std::map<std::string, size_t> memory_bytes;
 };
 
 struct MapJobSummary {

@@ -147,14 +147,31 @@ std::vector<ReportTable> RelocalizationTables(const ExperimentOptions& options,
   return tables;
 }
 
-std::vector<ReportTable> MapTables(const ExperimentOptions& options,
+// The memory a localization job on this map recorded (what the localizer
+// held), or the map job's estimate when no such job ran.
+const std::map<std::string, size_t>* LocalizationMemory(const ExperimentPlan& plan,
+                                                        const ExperimentResults& results,
+                                                        const std::string& row,
+                                                        const std::string& feature) {
+  for (const MatrixCell& cell : plan.cells) {
+    if (cell.row != row || cell.feature != feature) continue;
+    const auto it = results.localization.find(cell.job_id);
+    if (it != results.localization.end() && !it->second.memory_bytes.empty()) {
+      return &it->second.memory_bytes;
+    }
+  }
+  const auto map = results.maps.find("map/" + feature + "/" + row);
+  return map == results.maps.end() ? nullptr : &map->second.memory_bytes;
+}
+
+std::vector<ReportTable> MapTables(const ExperimentOptions& options, const ExperimentPlan& plan,
                                    const ExperimentResults& results,
                                    const std::optional<PaperReference>& paper) {
   const auto rows = MapRows(options, true);
   ReportTable nodes("Graph size (nodes)", rows, options.features);
   ReportTable memory("Memory needed for localization (MB)", rows, options.features, 1);
-  ReportTable per_node("Memory needed for localization per node (KiB); the paper's: (RAM - "
-                       "constant overhead) / nodes",
+  ReportTable per_node("Memory needed for localization per node (KiB); the paper's: RAM (its "
+                       "constant overhead excluded) / nodes",
                        rows, options.features, 1);
   std::vector<std::string> ate_rows;
   for (const std::string& row : rows) {
@@ -168,7 +185,9 @@ std::vector<ReportTable> MapTables(const ExperimentOptions& options,
       const MapJobSummary& s = it->second;
       nodes.SetMeasured(row, feature, s.num_nodes);
       size_t bytes = 0;
-      for (const auto& [component, component_bytes] : s.memory_bytes) bytes += component_bytes;
+      for (const auto& [component, component_bytes] : *LocalizationMemory(plan, results, row, feature)) {
+        bytes += component_bytes;
+      }
       memory.SetMeasured(row, feature, bytes / (1024.0 * 1024.0));
       if (s.num_nodes > 0) per_node.SetMeasured(row, feature, bytes / 1024.0 / s.num_nodes);
       if (s.ate_mm >= 0.0 && ParseMapSpec(row).kind != MapKind::kSingle) {
@@ -183,10 +202,9 @@ std::vector<ReportTable> MapTables(const ExperimentOptions& options,
     for (const std::string& row : rows) {
       for (const std::string& feature : options.features) {
         const auto ram = paper->Value({"table_ram_mb", "ram_mb", row}, feature);
-        const auto overhead = paper->Value({"table_ram_mb", "constant_overhead_mb"}, feature);
         const auto paper_nodes = paper->Value({"table_ram_mb", "nodes", row}, feature);
-        if (ram && overhead && paper_nodes && *paper_nodes > 0) {
-          per_node.SetPaper(row, feature, (*ram - *overhead) * 1024.0 / *paper_nodes);
+        if (ram && paper_nodes && *paper_nodes > 0) {
+          per_node.SetPaper(row, feature, *ram * 1024.0 / *paper_nodes);
         }
       }
     }
@@ -217,12 +235,15 @@ ReportTable TimingTable(const ExperimentOptions& options, const ExperimentPlan& 
       "feature_detection_ms", "lcd_single_session_ms", "lcd_1+2+3+4+5+6_ms",
       "lcd_1-2-3-4-5-6_ms",   "te_ms",                 "features_per_frame",
       "vocabulary_single_session_k", "vocabulary_1+2+3+4+5+6_k", "vocabulary_1-2-3-4-5-6_k",
-      "descriptor_bytes"};
+      "descriptor_bytes", "lcd_te_median_1+2+3+4+5+6_ms", "map_single_session_s"};
   ReportTable table("Per-frame timings (localization, ms), features per frame, vocabulary "
-                    "(thousands of words) and descriptor size (bytes)",
+                    "(thousands of words), descriptor size (bytes), median LCD + TE per frame on "
+                    "the six-session map (ms) and single-session map building from cached "
+                    "features (s, wall)",
                     rows, options.features, 1);
   for (const std::string& feature : options.features) {
-    Mean detection, te, features, lcd_single, lcd_full, lcd_reduced, vocab_single;
+    Mean detection, te, features, lcd_single, lcd_full, lcd_reduced, vocab_single, lcd_te_full,
+        map_single_s;
     std::set<std::string> seen;
     for (const MatrixCell& cell : plan.cells) {
       if (cell.feature != feature || !seen.insert(cell.job_id).second) continue;
@@ -235,14 +256,20 @@ ReportTable TimingTable(const ExperimentOptions& options, const ExperimentPlan& 
       const MapSpec used = plan.FindJob(cell.job_id)->map;
       const double lcd = s.mean_times_ms.loop_closure_detection;
       if (used.kind == MapKind::kSingle) lcd_single.Add(lcd);
-      if (used.label == kFullMerge) lcd_full.Add(lcd);
+      if (used.label == kFullMerge) {
+        lcd_full.Add(lcd);
+        lcd_te_full.Add(s.median_lcd_te_ms);
+      }
       if (used.label == kReduced) lcd_reduced.Add(lcd);
     }
     std::optional<double> vocab_full, vocab_reduced, descriptor_bytes;
     for (const auto& [id, s] : results.maps) {
       const Job* job = plan.FindJob(id);
       if (job == nullptr || job->feature != feature) continue;
-      if (job->map.kind == MapKind::kSingle) vocab_single.Add(s.vocabulary_words / 1000.0);
+      if (job->map.kind == MapKind::kSingle) {
+        vocab_single.Add(s.vocabulary_words / 1000.0);
+        map_single_s.Add(s.build_wall_s);
+      }
       if (job->map.label == kFullMerge) vocab_full = s.vocabulary_words / 1000.0;
       if (job->map.label == kReduced) vocab_reduced = s.vocabulary_words / 1000.0;
       descriptor_bytes = static_cast<double>(s.descriptor_bytes_per_feature);
@@ -251,7 +278,7 @@ ReportTable TimingTable(const ExperimentOptions& options, const ExperimentPlan& 
         {rows[0], detection.Get()},   {rows[1], lcd_single.Get()}, {rows[2], lcd_full.Get()},
         {rows[3], lcd_reduced.Get()}, {rows[4], te.Get()},         {rows[5], features.Get()},
         {rows[6], vocab_single.Get()}, {rows[7], vocab_full},      {rows[8], vocab_reduced},
-        {rows[9], descriptor_bytes}};
+        {rows[9], descriptor_bytes}, {rows[10], lcd_te_full.Get()}, {rows[11], map_single_s.Get()}};
     for (const auto& [row, value] : values) {
       if (value) table.SetMeasured(row, feature, *value);
     }
@@ -413,7 +440,7 @@ ExperimentReport BuildReport(const ExperimentOptions& options, const ExperimentP
   ExperimentReport report;
   if (!options.maps.empty()) {
     for (auto& t : RelocalizationTables(options, plan, results, paper)) report.tables.push_back(t);
-    for (auto& t : MapTables(options, results, paper)) report.tables.push_back(t);
+    for (auto& t : MapTables(options, plan, results, paper)) report.tables.push_back(t);
     report.tables.push_back(TimingTable(options, plan, results, paper));
   }
   for (auto& t : ConsecutiveTables(options, plan, results, paper, &report.consecutive_csv)) {
