@@ -23,6 +23,30 @@ const char* LocalizationOutcomeName(LocalizationOutcome outcome) {
   return "unknown";
 }
 
+namespace {
+
+// The diagnostic record of one transform estimation, with the ground-truth
+// distance between the node's camera and the frame's when both have it.
+CandidateAttempt AttemptOf(NodeId id, LinkType source, const MapNode& node, const RgbdFrame& frame,
+                           const RegistrationResult& registration) {
+  CandidateAttempt attempt;
+  attempt.node = id;
+  attempt.session = node.session;
+  attempt.source = source;
+  attempt.status = registration.status;
+  attempt.matches = registration.matches_first_pass;
+  attempt.inliers = registration.num_inliers;
+  if (node.truth_from_camera && frame.world_from_camera) {
+    const Rigid3d node_from_frame = node.truth_from_camera->Inverse() * *frame.world_from_camera;
+    attempt.truth_distance_m = node_from_frame.translation.norm();
+    attempt.truth_angle_deg =
+        RotationAngleRad(node_from_frame.rotation, Eigen::Quaterniond::Identity()) * 180.0 / M_PI;
+  }
+  return attempt;
+}
+
+}  // namespace
+
 Localizer::Localizer(const Map& map, const EngineOptions& options)
     : map_(map), options_(options), registration_(options.Registration()) {
   options_.Check();
@@ -161,20 +185,7 @@ Localizer::Attempt Localizer::TryCandidate(const Candidate& candidate, const Rgb
   ++record->candidates_tried;
   record->registration_status = registration.status;
   record->inliers = registration.num_inliers;
-  CandidateAttempt attempt;
-  attempt.node = candidate.node;
-  attempt.session = node.session;
-  attempt.source = candidate.type;
-  attempt.status = registration.status;
-  attempt.matches = registration.matches_first_pass;
-  attempt.inliers = registration.num_inliers;
-  if (node.truth_from_camera && frame.world_from_camera) {
-    const Rigid3d node_from_frame = node.truth_from_camera->Inverse() * *frame.world_from_camera;
-    attempt.truth_distance_m = node_from_frame.translation.norm();
-    attempt.truth_angle_deg =
-        RotationAngleRad(node_from_frame.rotation, Eigen::Quaterniond::Identity()) * 180.0 / M_PI;
-  }
-  record->attempts.push_back(attempt);
+  record->attempts.push_back(AttemptOf(candidate.node, candidate.type, node, frame, registration));
   if (!registration.accepted()) return Attempt::kRejected;
   if (cache_) {
     const CacheValidationResult validation =
