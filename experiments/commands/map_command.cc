@@ -51,7 +51,8 @@ void WriteFrames(const std::string& path, const std::vector<MappingFrameResult>&
 RunFn SetupMap(CLI::App& command) {
   auto args = std::make_shared<MapArgs>();
   command.add_option("--dataset", args->dataset, "dataset folder")->required();
-  command.add_option("--format", args->format, "dataset format (default: auto)");
+  command.add_option("--dataset-format,--format", args->format,
+                     "dataset format: auto (default), synthetic, tum, rtabmap-images, rtabmap-db");
   command.add_option("--sessions", args->sessions, "sessions to replay, in order")
       ->required()->delimiter(',');
   command.add_option("--config", args->config, "engine options (JSON, configs/engine_*.json)");

@@ -36,11 +36,13 @@ bool HasDatabaseFiles(const fs::path& folder) {
 std::vector<std::string> MatchingFormats(const fs::path& path) {
   if (IsSqliteFile(path)) return {"rtabmap-db"};
   if (!fs::is_directory(path)) return {};
-  std::vector<std::string> formats;
-  if (fs::is_regular_file(path / kManifestFileName)) formats.push_back("synthetic");
+  // duskmap's manifest and TUM's index files are decisive: their sessions
+  // hold rgb/ folders too, which alone would also look like an image release.
+  if (fs::is_regular_file(path / kManifestFileName)) return {"synthetic"};
   if (fs::is_regular_file(path / "rgb.txt") && fs::is_regular_file(path / "depth.txt")) {
-    formats.push_back("tum");
+    return {"tum"};
   }
+  std::vector<std::string> formats;
   if (!FindImageSessions(path.string()).empty()) formats.push_back("rtabmap-images");
   if (HasDatabaseFiles(path)) formats.push_back("rtabmap-db");
   return formats;

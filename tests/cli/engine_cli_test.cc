@@ -56,16 +56,18 @@ std::string EngineCli::dir_;
 
 TEST_F(EngineCli, MapThenLocalizeWritesOutputs) {
   const Result map =
-      RunDuskmap("map --dataset " + dir_ + "/data --format synthetic --sessions 1 --output " +
+      RunDuskmap("map --dataset " + dir_ + "/data --dataset-format synthetic --sessions 1 --output " +
                  dir_ + "/map.db --summary " + dir_ + "/map.json --frames " + dir_ + "/map.csv");
   ASSERT_EQ(map.exit_code, 0) << map.output;
   const auto map_summary = nlohmann::json::parse(std::ifstream(dir_ + "/map.json"));
   EXPECT_EQ(map_summary["nodes_per_session"][0], 8);
   EXPECT_GT(map_summary["memory_bytes"]["descriptors"].get<double>(), 0.0);
 
+  // The format detected from the folder (a synthetic dataset's sessions have
+  // rgb/ folders, like an image release; its manifest decides).
   const Result localize =
       RunDuskmap("localize --map " + dir_ + "/map.db --dataset " + dir_ +
-                 "/data --format synthetic --session A --records " + dir_ +
+                 "/data --session A --records " + dir_ +
                  "/a.jsonl --trajectory " + dir_ + "/a.tum --summary " + dir_ + "/a.json");
   ASSERT_EQ(localize.exit_code, 0) << localize.output;
   const auto summary = nlohmann::json::parse(std::ifstream(dir_ + "/a.json"));

@@ -17,11 +17,13 @@ TEST(DatasetFormats, ListsTheFourFormats) {
 
 TEST(DetectDatasetFormat, RecognisesFolderContents) {
   const std::string root = testing::MakeTempDir();
-  fs::create_directories(root + "/tum");
+  // TUM and duskmap's synthetic sessions have rgb/ folders like an image
+  // release; their index files decide.
+  fs::create_directories(root + "/tum/rgb");
   testing::WriteText(root + "/tum/rgb.txt", "");
   testing::WriteText(root + "/tum/depth.txt", "");
   EXPECT_EQ(DetectDatasetFormat(root + "/tum"), "tum");
-  fs::create_directories(root + "/synthetic");
+  fs::create_directories(root + "/synthetic/1/rgb");
   testing::WriteText(root + "/synthetic/manifest.json", "{}");
   EXPECT_EQ(DetectDatasetFormat(root + "/synthetic"), "synthetic");
   fs::create_directories(root + "/release/rgb");
