@@ -68,7 +68,8 @@ RunFn SetupLocalize(CLI::App& command) {
   auto args = std::make_shared<LocalizeArgs>();
   command.add_option("--map", args->map, "map file (from duskmap map)")->required();
   command.add_option("--dataset", args->dataset, "dataset folder")->required();
-  command.add_option("--format", args->format, "dataset format (default: auto)");
+  command.add_option("--dataset-format,--format", args->format,
+                     "dataset format: auto (default), synthetic, tum, rtabmap-images, rtabmap-db");
   command.add_option("--session", args->session, "session to localize")->required();
   command.add_option("--config", args->config, "engine options (JSON); the map's feature type wins");
   command.add_option("--records", args->records, "per-frame records (.jsonl or .csv)");
@@ -79,12 +80,17 @@ RunFn SetupLocalize(CLI::App& command) {
   return [args] {
     EngineOptions options = args->config.empty() ? EngineOptions() : ReadEngineOptionsFile(args->config);
     if (args->odometry_cache >= 0) options.localization.odometry_cache_size = args->odometry_cache;
-    const Map map = LoadMap(args->map);
+    // The words apart: the localizer imports them into its vocabulary and
+    // lets them go, so the run holds them once.
+    MapLoadOptions load;
+    load.load_words = false;
+    const Map map = LoadMap(args->map, load);
     if (args->config.empty()) options.features.type = map.metadata().feature_type;
     options.Check();
     const auto dataset = OpenDataset(args->dataset, args->format);
     std::unique_ptr<SessionReader> session = dataset->OpenSession(args->session);
-    const LocalizationRun run = LocalizeSession(map, *session, options);
+    const LocalizationRun run =
+        LocalizeSession(map, LoadMapWords(args->map, load), *session, options);
     if (!args->records.empty()) WriteRecords(args->records, run.records);
     if (!args->trajectory.empty()) WriteCorrectedTrajectory(args->trajectory, run.records);
     const nlohmann::json summary = SummaryToJson(run);

@@ -47,7 +47,7 @@ CandidateAttempt AttemptOf(NodeId id, LinkType source, const MapNode& node, cons
 
 }  // namespace
 
-Localizer::Localizer(const Map& map, const EngineOptions& options)
+Localizer::Localizer(const Map& map, const EngineOptions& options, const MapWords* words)
     : map_(map), options_(options), registration_(options.Registration()) {
   options_.Check();
   SLAM_THROW_IF_NOT(ConfigError, map.metadata().feature_type == options_.features.type)
@@ -58,7 +58,7 @@ Localizer::Localizer(const Map& map, const EngineOptions& options)
   lcd_ = std::make_unique<LoopClosureDetector>(options_.LoopClosure());
   // The mapper's vocabulary, restored exactly from the map (as the reference
   // loads it from its database); every node is a candidate place.
-  lcd_->ImportMap(MapVocabularySnapshot(map_),
+  lcd_->ImportMap(MapVocabularySnapshot(map_, words != nullptr ? *words : map_.words()),
                   [this](NodeId id) { return map_.node(id).session; });
   for (const auto& [key, link] : map_.links()) lcd_->graph().AddLink(link.from, link.to, link.type);
   if (options_.localization.odometry_cache_size > 0) {

@@ -36,7 +36,10 @@ namespace duskmap {
 class Localizer {
  public:
   // Throws ConfigError when the map was built with another feature type.
-  Localizer(const Map& map, const EngineOptions& options);
+  // `words`: the vocabulary's words when the map was loaded without them
+  // (MapLoadOptions::load_words false); nullptr = map.words(). They are
+  // imported in the constructor and not referenced afterwards.
+  Localizer(const Map& map, const EngineOptions& options, const MapWords* words = nullptr);
   ~Localizer();
 
   LocalizationRecord ProcessFrame(const RgbdFrame& frame);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <utility>
 
 #include "slam/core/check.h"
 #include "slam/core/timer.h"
@@ -96,7 +97,8 @@ MappingRun BuildMap(const std::vector<FrameSource*>& sessions, const EngineOptio
   const LoopClosureDetector& lcd = mapper.loop_closure();
   run.memory = ComputeMapMemory(
       run.map, lcd.filter().TransitionBytes() + lcd.filter().num_places() * sizeof(double));
-  run.memory.words_index_bytes += lcd.vocabulary().MemoryBytes();  // + the map's stored words
+  // The mapper's live vocabulary, besides the words the map stores.
+  run.memory.words_index_bytes += lcd.vocabulary().MemoryBytes();
   for (auto& [stage, values] : times) run.timings[stage] = SummarizeTimes(values);
   run.wall_s = wall.ElapsedMs() / 1000.0;
   return run;
@@ -123,16 +125,29 @@ class BorrowedReaderSource : public FrameSource {
 LocalizationRun LocalizeSession(const Map& map, SessionReader& session,
                                 const EngineOptions& options,
                                 const RelocalizationMetricsOptions& metrics) {
+  return LocalizeSession(map, MapWords(), session, options, metrics);
+}
+
+LocalizationRun LocalizeSession(const Map& map, MapWords words, SessionReader& session,
+                                const EngineOptions& options,
+                                const RelocalizationMetricsOptions& metrics) {
   session.Rewind();
   BorrowedReaderSource source(session);
-  return LocalizeSession(map, source, options, metrics);
+  return LocalizeSession(map, std::move(words), source, options, metrics);
 }
 
 LocalizationRun LocalizeSession(const Map& map, FrameSource& session,
                                 const EngineOptions& options,
                                 const RelocalizationMetricsOptions& metrics) {
+  return LocalizeSession(map, MapWords(), session, options, metrics);
+}
+
+LocalizationRun LocalizeSession(const Map& map, MapWords words, FrameSource& session,
+                                const EngineOptions& options,
+                                const RelocalizationMetricsOptions& metrics) {
   Stopwatch wall;
-  Localizer localizer(map, options);
+  Localizer localizer(map, options, words.ids.empty() ? nullptr : &words);
+  words = MapWords();  // imported: the vocabulary's index holds them now
   LocalizationRun run;
   std::vector<std::optional<Rigid3d>> truth;
   std::vector<Eigen::Vector3d> positions;
@@ -155,7 +170,9 @@ LocalizationRun LocalizeSession(const Map& map, FrameSource& session,
   const LoopClosureDetector& lcd = localizer.loop_closure();
   run.memory = ComputeMapMemory(
       map, lcd.filter().TransitionBytes() + lcd.filter().num_places() * sizeof(double));
-  run.memory.words_index_bytes += lcd.vocabulary().MemoryBytes();  // + the map's stored words
+  // The imported vocabulary (words, index, inverted index), besides what the
+  // map holds (its stored words only when it was loaded with them).
+  run.memory.words_index_bytes += lcd.vocabulary().MemoryBytes();
   for (auto& [stage, values] : times) run.timings[stage] = SummarizeTimes(values);
   run.wall_s = wall.ElapsedMs() / 1000.0;
   return run;

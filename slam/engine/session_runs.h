@@ -102,5 +102,14 @@ LocalizationRun LocalizeSession(const Map& map, SessionReader& session,
 LocalizationRun LocalizeSession(const Map& map, FrameSource& session,
                                 const EngineOptions& options,
                                 const RelocalizationMetricsOptions& metrics = {});
+// The same for a map loaded without its words (MapLoadOptions::load_words
+// false): the localizer imports `words`, which are released before the first
+// frame, so the run holds the words once, in the vocabulary's index.
+LocalizationRun LocalizeSession(const Map& map, MapWords words, FrameSource& session,
+                                const EngineOptions& options,
+                                const RelocalizationMetricsOptions& metrics = {});
+LocalizationRun LocalizeSession(const Map& map, MapWords words, SessionReader& session,
+                                const EngineOptions& options,
+                                const RelocalizationMetricsOptions& metrics = {});
 
 }  // namespace duskmap

@@ -240,11 +240,15 @@ void EngineJobExecutor::BuildMapJob(const Job& job, const fs::path& job_dir) {
 
 void EngineJobExecutor::Localize(const Job& job, const fs::path& job_dir) {
   const EngineOptions options = EngineOptionsForFeature(engine_, FeatureSetupByLabel(job.feature));
-  const Map map = LoadMap((OutputDir(output_dir_, "map/" + job.feature + "/" + job.map.label) /
-                           kMapFile)
-                              .string());
+  const std::string map_file =
+      (OutputDir(output_dir_, "map/" + job.feature + "/" + job.map.label) / kMapFile).string();
+  // The words apart (MapLoadOptions::load_words): the localizer imports them
+  // and lets them go, so the job holds them once.
+  MapLoadOptions load;
+  load.load_words = false;
+  const Map map = LoadMap(map_file, load);
   FeatureCacheReader source(CacheFile(job.extractor, job.session));
-  const LocalizationRun run = LocalizeSession(map, source, options);
+  const LocalizationRun run = LocalizeSession(map, LoadMapWords(map_file, load), source, options);
 
   LocalizationJobSummary summary;
   const RelocalizationSummary& r = run.summary.relocalization;

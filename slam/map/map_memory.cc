@@ -21,16 +21,15 @@ size_t NodeGraphBytes() {
 MapMemory ComputeMapMemory(const Map& map, size_t filter_bytes) {
   MapMemory memory;
   memory.num_nodes = map.nodes().size();
-  size_t word_references = 0;
   for (const auto& [id, node] : map.nodes()) {
     memory.descriptors_bytes += node.features.DescriptorMemoryBytes();
     memory.keypoints_points_bytes += node.features.KeypointPointMemoryBytes();
-    memory.words_index_bytes += node.word_ids.size() * sizeof(WordId);
-    for (WordId w : node.word_ids) word_references += (w != kNoWord);
+    // The node's words and their counts (a live vocabulary's inverted index
+    // is its owner's to add: Vocabulary::MemoryBytes).
+    memory.words_index_bytes +=
+        node.word_ids.size() * sizeof(WordId) + node.word_counts.size() * sizeof(int32_t);
     memory.graph_bytes += NodeGraphBytes();
   }
-  // Inverted index: one (node id, count) entry per distinct reference.
-  memory.words_index_bytes += word_references * (sizeof(NodeId) + sizeof(int32_t));
   const MapWords& words = map.words();
   memory.words_index_bytes += words.ids.size() * sizeof(WordId) +
                               words.descriptors.total() * words.descriptors.elemSize();

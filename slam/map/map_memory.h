@@ -13,7 +13,7 @@ namespace duskmap {
 struct MapMemory {
   size_t descriptors_bytes = 0;        // node descriptors as kept (codes + row scales)
   size_t keypoints_points_bytes = 0;   // packed keypoint and half-float 3D point of every feature
-  size_t words_index_bytes = 0;        // word descriptors, node word ids, inverted index entries
+  size_t words_index_bytes = 0;        // stored word descriptors, node word ids and counts (+ a live vocabulary, by its owner)
   size_t graph_bytes = 0;              // node poses, cameras and metadata; links
   size_t filter_bytes = 0;             // Bayes filter state (given by its owner)
   size_t num_nodes = 0;

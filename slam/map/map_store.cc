@@ -318,7 +318,7 @@ void ReadLinks(SqliteDatabase& db, Map* map) {
   }
 }
 
-void ReadWords(SqliteDatabase& db, const MapMetadata& m, Map* map, int64_t next_word_id) {
+MapWords ReadWords(SqliteDatabase& db, const MapMetadata& m, int64_t next_word_id) {
   MapWords words;
   words.next_word_id = static_cast<WordId>(next_word_id);
   std::vector<cv::Mat> rows;
@@ -329,15 +329,15 @@ void ReadWords(SqliteDatabase& db, const MapMetadata& m, Map* map, int64_t next_
                                 db.path() + ": word " + std::to_string(words.ids.back())));
   }
   if (!rows.empty()) cv::vconcat(rows, words.descriptors);
-  map->SetWords(std::move(words));
+  return words;
 }
 
-void CheckCounts(const std::map<std::string, std::string>& meta, const Map& map,
+void CheckCounts(const std::map<std::string, std::string>& meta, const Map& map, size_t num_words,
                  const std::string& path) {
   const bool ok = MetaInt(meta, "num_sessions", path) == static_cast<int64_t>(map.sessions().size()) &&
                   MetaInt(meta, "num_nodes", path) == static_cast<int64_t>(map.nodes().size()) &&
                   MetaInt(meta, "num_links", path) == static_cast<int64_t>(map.links().size()) &&
-                  MetaInt(meta, "num_words", path) == static_cast<int64_t>(map.words().ids.size());
+                  MetaInt(meta, "num_words", path) == static_cast<int64_t>(num_words);
   SLAM_THROW_IF_NOT(InputError, ok)
       << path << ": incomplete map (row counts differ from those recorded at save)";
 }
@@ -378,9 +378,35 @@ Map LoadMap(const std::string& path, const MapLoadOptions& options) {
   ReadNodes(db, metadata, &map);
   map.ReserveNodeIdsUpTo(MetaInt(meta, "last_node_id", path));
   ReadLinks(db, &map);
-  ReadWords(db, metadata, &map, MetaInt(meta, "next_word_id", path));
-  CheckCounts(meta, map, path);
+  const int64_t next_word_id = MetaInt(meta, "next_word_id", path);
+  size_t num_words = 0;
+  if (options.load_words) {
+    MapWords words = ReadWords(db, metadata, next_word_id);
+    num_words = words.ids.size();
+    map.SetWords(std::move(words));
+  } else {
+    SqliteStatement count = db.Prepare("SELECT count(*) FROM words");
+    SLAM_THROW_IF_NOT(InputError, count.Step()) << path << ": cannot count the words";
+    num_words = static_cast<size_t>(count.Int(0));
+    MapWords empty;
+    empty.next_word_id = static_cast<WordId>(next_word_id);
+    map.SetWords(std::move(empty));
+  }
+  CheckCounts(meta, map, num_words, path);
   return map;
+}
+
+MapWords LoadMapWords(const std::string& path, const MapLoadOptions& options) {
+  CheckFileHeader(path);
+  SqliteDatabase db(path, /*read_only=*/true);
+  if (options.verify_integrity) CheckIntegrity(db);
+  const std::map<std::string, std::string> meta = ReadMeta(db);
+  const MapMetadata metadata = ReadMetadata(meta, path, options);
+  MapWords words = ReadWords(db, metadata, MetaInt(meta, "next_word_id", path));
+  SLAM_THROW_IF_NOT(InputError, MetaInt(meta, "num_words", path) ==
+                                    static_cast<int64_t>(words.ids.size()))
+      << path << ": incomplete map (row counts differ from those recorded at save)";
+  return words;
 }
 
 }  // namespace duskmap

@@ -25,11 +25,19 @@ inline constexpr int kMapSchemaVersion = 3;  // 2: compact node features; 3: wor
 struct MapLoadOptions {
   std::string expected_feature_type;  // "" accepts any; otherwise must equal the map's
   bool verify_integrity = true;       // run PRAGMA quick_check (linear in the file size)
+  // false: leave the vocabulary's word descriptors out of the Map (its
+  // words().ids stay empty, next_word_id is kept); LoadMapWords reads them
+  // apart, for a localizer that imports them and then lets them go.
+  bool load_words = true;
 };
 
 // Throws InputError naming the path when the file cannot be written.
 void SaveMap(const Map& map, const std::string& path);
 
 Map LoadMap(const std::string& path, const MapLoadOptions& options = MapLoadOptions());
+
+// The vocabulary's words of a stored map, with the same checks as LoadMap
+// (options.load_words is ignored).
+MapWords LoadMapWords(const std::string& path, const MapLoadOptions& options = MapLoadOptions());
 
 }  // namespace duskmap

@@ -8,9 +8,12 @@
 namespace duskmap {
 
 VocabularySnapshot MapVocabularySnapshot(const Map& map) {
+  return MapVocabularySnapshot(map, map.words());
+}
+
+VocabularySnapshot MapVocabularySnapshot(const Map& map, const MapWords& words) {
   VocabularySnapshot snapshot;
   snapshot.kind = map.metadata().descriptor_kind;
-  const MapWords& words = map.words();
   snapshot.word_ids = words.ids;
   snapshot.descriptors = words.descriptors;
   snapshot.next_word_id = words.next_word_id;

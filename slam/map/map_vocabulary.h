@@ -14,6 +14,8 @@ namespace duskmap {
 // differ in size; Vocabulary::Import checks the rest (words referenced but not
 // stored, and the reverse).
 VocabularySnapshot MapVocabularySnapshot(const Map& map);
+// The same with the words given apart (a map loaded without its words).
+VocabularySnapshot MapVocabularySnapshot(const Map& map, const MapWords& words);
 
 // Stores the snapshot in the map: its words, and every node's word counts and
 // n_j (nodes the snapshot does not list get no words and n_j = 0). Throws

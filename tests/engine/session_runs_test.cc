@@ -183,15 +183,30 @@ TEST_F(EngineSessions, StoredMapLocalizesIdenticallyAndStaysUnchanged) {
   load_options.expected_feature_type = "surf";
   const Map loaded = LoadMap(before, load_options);
   const LocalizationRun from_file = Localize(loaded, "A");
-  ASSERT_EQ(in_memory.records.size(), from_file.records.size());
-  for (size_t i = 0; i < in_memory.records.size(); ++i) {
-    const LocalizationRecord &a = in_memory.records[i], &b = from_file.records[i];
-    EXPECT_EQ(a.relocalized, b.relocalized) << "frame " << i;
-    EXPECT_EQ(a.matched_node, b.matched_node) << "frame " << i;
-    EXPECT_EQ(a.inliers, b.inliers) << "frame " << i;
-    ASSERT_EQ(a.map_from_camera.has_value(), b.map_from_camera.has_value());
-    if (a.map_from_camera) {
-      EXPECT_EQ(a.map_from_camera->translation, b.map_from_camera->translation) << "frame " << i;
+  // The words loaded apart (as the experiment runner and `duskmap localize`
+  // do): the same records, and the words counted once.
+  MapLoadOptions apart = load_options;
+  apart.load_words = false;
+  const Map without_words = LoadMap(before, apart);
+  EXPECT_TRUE(without_words.words().ids.empty());
+  std::unique_ptr<SessionReader> reader = dataset_->OpenSession("A");
+  const LocalizationRun words_apart =
+      LocalizeSession(without_words, LoadMapWords(before, apart), *reader, TestOptions());
+  const size_t stored_words_bytes =
+      map.words().ids.size() * sizeof(WordId) + map.words().descriptors.total() * sizeof(float);
+  EXPECT_EQ(words_apart.memory.words_index_bytes + stored_words_bytes,
+            from_file.memory.words_index_bytes);
+  for (const LocalizationRun* other : {&from_file, &words_apart}) {
+    ASSERT_EQ(in_memory.records.size(), other->records.size());
+    for (size_t i = 0; i < in_memory.records.size(); ++i) {
+      const LocalizationRecord &a = in_memory.records[i], &b = other->records[i];
+      EXPECT_EQ(a.relocalized, b.relocalized) << "frame " << i;
+      EXPECT_EQ(a.matched_node, b.matched_node) << "frame " << i;
+      EXPECT_EQ(a.inliers, b.inliers) << "frame " << i;
+      ASSERT_EQ(a.map_from_camera.has_value(), b.map_from_camera.has_value());
+      if (a.map_from_camera) {
+        EXPECT_EQ(a.map_from_camera->translation, b.map_from_camera->translation) << "frame " << i;
+      }
     }
   }
   std::filesystem::remove_all(dir);

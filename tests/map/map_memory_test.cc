@@ -14,8 +14,9 @@ TEST(ComputeMapMemory, CountsComponents) {
   EXPECT_EQ(memory.descriptors_bytes, 10u * 40 * 64 * 4);
   // Packed keypoints (16 bytes) and half-float points (6 bytes).
   EXPECT_EQ(memory.keypoints_points_bytes, 10u * 40 * (16 + 6));
-  // Word ids (20 per node) + 6 words of 64 floats at least.
-  EXPECT_GE(memory.words_index_bytes, 10u * 20 * 4 + 6 * 64 * 4);
+  // What the map holds of the vocabulary: 15 word ids and counts per node,
+  // and 6 stored words (id + 64 floats).
+  EXPECT_EQ(memory.words_index_bytes, 10u * 15 * (4 + 4) + 6 * (4 + 64 * 4));
   EXPECT_GT(memory.graph_bytes, 10u * sizeof(MapNode));
   EXPECT_EQ(memory.filter_bytes, 1234u);
   EXPECT_EQ(memory.total_bytes(), memory.descriptors_bytes + memory.keypoints_points_bytes +

@@ -216,6 +216,22 @@ TEST_F(MapStoreTest, OldSchemaVersionAsksForARebuild) {
   ExpectLoadError("schema version 1 is not supported (this build reads 3;");
 }
 
+TEST_F(MapStoreTest, WordsLoadApart) {
+  const Map map = testing::MakeTestMap(2);
+  SaveMap(map, path_);
+  MapLoadOptions apart;
+  apart.load_words = false;
+  const Map loaded = LoadMap(path_, apart);
+  EXPECT_TRUE(loaded.words().ids.empty());
+  EXPECT_EQ(loaded.words().next_word_id, map.words().next_word_id);
+  const MapWords words = LoadMapWords(path_);
+  EXPECT_EQ(words.ids, map.words().ids);
+  EXPECT_TRUE(SameMatrix(words.descriptors, map.words().descriptors));
+  Tamper("DELETE FROM words WHERE id = 4");
+  ExpectLoadError("incomplete map", apart);
+  EXPECT_THROW(LoadMapWords(path_), InputError);
+}
+
 TEST_F(MapStoreTest, VocabularyRoundTripsWithCountsAndNextWordId) {
   Map map = testing::MakeTestMap(2);
   MapWords words = map.words();
