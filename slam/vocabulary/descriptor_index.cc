@@ -210,6 +210,13 @@ class DescriptorIndex::Backend {
     }
   }
 
+  void Compact() {
+    if (forest_) forest_->CompactLeaves();
+  }
+  void ReserveIds(WordId max_id) {
+    if (forest_) forest_->ReserveIds(max_id);
+  }
+
   void Rebuild() {
     if (forest_) {
       forest_->Rebuild();
@@ -381,5 +388,9 @@ void DescriptorIndex::Rebuild() { backend_->Rebuild(); }
 size_t DescriptorIndex::size() const { return backend_->size(); }
 int DescriptorIndex::rebuild_count() const { return backend_->rebuild_count(); }
 size_t DescriptorIndex::MemoryBytes() const { return backend_->MemoryBytes(); }
+
+void DescriptorIndex::Compact() { backend_->Compact(); }
+
+void DescriptorIndex::ReserveIds(WordId max_id) { backend_->ReserveIds(max_id); }
 
 }  // namespace duskmap

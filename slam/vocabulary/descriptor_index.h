@@ -84,6 +84,12 @@ class DescriptorIndex {
 
   // Rebuilds every tree from the live words now (a "batch" build).
   void Rebuild();
+  // Releases what only growth needs (KD-forest leaf slack; nothing for the
+  // FLANN and linear kinds), for an index that will not grow. Searches are
+  // unchanged.
+  void Compact();
+  // Reserves id bookkeeping for ids up to `max_id`.
+  void ReserveIds(WordId max_id);
 
   size_t size() const;          // live words
   int rebuild_count() const;    // full builds so far (first build included)

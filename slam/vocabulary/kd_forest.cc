@@ -58,9 +58,9 @@ float KdForest::QueryValue(const uint8_t* q, int dim) const {
 float KdForest::Value(uint32_t p, int dim) const { return QueryValue(Data(p), dim); }
 
 const uint8_t* KdForest::Row(WordId id) const {
-  auto it = slot_.find(id);
-  SLAM_CHECK(it != slot_.end());
-  return Data(it->second);
+  const uint32_t p = slot_.Find(id);
+  SLAM_CHECK(p != WordSlots::kNone);
+  return Data(p);
 }
 
 int32_t KdForest::MakeLeaf(const std::vector<uint32_t>& idx, size_t begin, size_t end) {
@@ -132,14 +132,14 @@ void KdForest::Rebuild() {
   // the insertion order, which fixes the shuffles below.
   std::vector<std::pair<WordId, uint32_t>> live;
   live.reserve(slot_.size());
-  for (const auto& [id, p] : slot_) live.push_back({id, p});
-  std::sort(live.begin(), live.end());
+  slot_.ForEach([&live](WordId id, uint32_t p) { live.push_back({id, p}); });
+  if (live.empty()) slot_.Clear();
   std::vector<uint8_t, HugePageAllocator<uint8_t>> data;
   std::vector<WordId> ids;
   data.reserve(live.size() * row_bytes_);
   ids.reserve(live.size());
   for (const auto& [id, p] : live) {
-    slot_[id] = static_cast<uint32_t>(ids.size());
+    slot_.Set(id, static_cast<uint32_t>(ids.size()));
     ids.push_back(id);
     data.insert(data.end(), Data(p), Data(p) + row_bytes_);
   }
@@ -191,7 +191,7 @@ void KdForest::RenumberByLeaves() {
   for (uint32_t p = 0; p < n; ++p) {
     std::copy_n(Data(p), row_bytes_, &data[static_cast<size_t>(renamed[p]) * row_bytes_]);
     ids[renamed[p]] = ids_[p];
-    slot_[ids_[p]] = renamed[p];
+    slot_.Set(ids_[p], renamed[p]);
   }
   data_.swap(data);
   ids_.swap(ids);
@@ -202,6 +202,36 @@ void KdForest::RenumberByLeaves() {
       entry.point = renamed[entry.point];
     }
   }
+}
+
+void KdForest::CompactLeaves() {
+  std::vector<LeafEntry, HugePageAllocator<LeafEntry>> pool;
+  size_t entries = 0;
+  for (const Node& node : nodes_) {
+    if (node.dim < 0) entries += 1 + std::max<int32_t>(node.child[1], 1);
+  }
+  pool.reserve(entries);
+  // Only the leaves reachable from the roots: an insertion that split a leaf
+  // leaves the old node and block behind until a rebuild.
+  std::vector<int32_t> stack(roots_.begin(), roots_.end());
+  while (!stack.empty()) {
+    Node& node = nodes_[stack.back()];
+    stack.pop_back();
+    if (node.dim >= 0) {
+      stack.push_back(node.child[1]);
+      stack.push_back(node.child[0]);
+      continue;
+    }
+    const int32_t count = node.child[1];
+    const uint32_t capacity = static_cast<uint32_t>(std::max<int32_t>(count, 1));
+    pool.push_back({capacity, kNoWord});
+    const int32_t offset = static_cast<int32_t>(pool.size());
+    pool.insert(pool.end(), pool_.begin() + node.child[0], pool_.begin() + node.child[0] + count);
+    pool.resize(pool.size() + capacity - count);
+    node.child[0] = offset;
+  }
+  pool.shrink_to_fit();
+  pool_.swap(pool);
 }
 
 void KdForest::Insert(int tree, uint32_t p) {
@@ -238,7 +268,7 @@ void KdForest::Add(WordId id, const uint8_t* row) {
   const uint32_t p = static_cast<uint32_t>(ids_.size());
   data_.insert(data_.end(), row, row + row_bytes_);
   ids_.push_back(id);
-  slot_[id] = p;
+  slot_.Set(id, p);
   if (roots_.empty() || ids_.size() > rows_at_build_ * options_.rebuild_factor) {
     Rebuild();
     return;
@@ -247,11 +277,10 @@ void KdForest::Add(WordId id, const uint8_t* row) {
 }
 
 bool KdForest::Remove(WordId id) {
-  auto it = slot_.find(id);
-  if (it == slot_.end()) return false;
-  const uint32_t p = it->second;
+  const uint32_t p = slot_.Find(id);
+  if (p == WordSlots::kNone) return false;
   ids_[p] = kNoWord;
-  slot_.erase(it);
+  slot_.Erase(id);
   if (slot_.empty()) {
     Rebuild();  // frees everything
     return true;
@@ -386,9 +415,7 @@ size_t KdForest::MemoryBytes() const {
   size_t bytes = data_.capacity() + ids_.capacity() * sizeof(WordId) +
                  nodes_.capacity() * sizeof(Node) + pool_.capacity() * sizeof(LeafEntry) +
                  visited_.capacity() * sizeof(uint32_t);
-  // unordered_map: one heap node (next pointer, key, value, cached hash) per id plus buckets.
-  bytes += slot_.size() * 24 + slot_.bucket_count() * sizeof(void*);
-  return bytes;
+  return bytes + slot_.MemoryBytes();
 }
 
 }  // namespace duskmap

@@ -12,10 +12,10 @@
 
 #include <cstdint>
 #include <cstdlib>
-#include <unordered_map>
 #include <vector>
 
 #include "slam/core/random.h"
+#include "slam/vocabulary/word_slots.h"
 #include "slam/vocabulary/word_types.h"
 
 namespace duskmap {
@@ -66,13 +66,20 @@ class KdForest {
 
   void Add(WordId id, const uint8_t* row);  // id must be new
   bool Remove(WordId id);                   // false when absent
-  bool Contains(WordId id) const { return slot_.count(id) != 0; }
+  bool Contains(WordId id) const { return slot_.Contains(id); }
   // Valid until the next Add or Rebuild.
   const uint8_t* Row(WordId id) const;
   // Up to 2 nearest live rows, nearest first.
   void SearchTwo(const uint8_t* query, std::vector<KdNeighbour>* out) const;
   // Drops removed rows and builds every tree again.
   void Rebuild();
+  // Gives every leaf block exactly the entries it holds (a build leaves room
+  // for leaf_size + 1 so that insertions rarely move a block): for a forest
+  // that will not grow, e.g. an imported vocabulary used for localization.
+  // Searches are unchanged; a later Add still works (a full block moves).
+  void CompactLeaves();
+  // Reserves the id table for ids up to `max_id`.
+  void ReserveIds(WordId max_id) { slot_.Reserve(max_id); }
 
   size_t size() const { return slot_.size(); }
   int rebuild_count() const { return rebuilds_; }
@@ -122,7 +129,7 @@ class KdForest {
   Rng rng_;
   std::vector<uint8_t, HugePageAllocator<uint8_t>> data_;  // rows by point index (removed rows until a rebuild)
   std::vector<WordId> ids_;             // point -> id (kNoWord once removed)
-  std::unordered_map<WordId, uint32_t> slot_;  // id -> point
+  WordSlots slot_;                      // id -> point
   std::vector<Node, HugePageAllocator<Node>> nodes_;
   std::vector<LeafEntry, HugePageAllocator<LeafEntry>> pool_;  // leaf entry blocks (see Node)
   std::vector<int32_t> roots_;

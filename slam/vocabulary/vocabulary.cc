@@ -135,6 +135,11 @@ NodeQuantization Vocabulary::AddNode(NodeId node, const cv::Mat& descriptors, De
   CheckDescriptors(descriptors, kind);
   std::vector<const uint8_t*> new_rows;
   NodeQuantization q = Run(descriptors, kind, /*create=*/true, &new_rows);
+  SLAM_THROW_IF_NOT(InputError,
+                    static_cast<int64_t>(next_word_id_) - 1 + static_cast<int64_t>(new_rows.size()) <=
+                        kMaxWordId)
+      << "Vocabulary: node " << node << " would create word " << next_word_id_ + new_rows.size() - 1
+      << ", beyond the " << kMaxWordId << " words a vocabulary supports";
   if (!new_rows.empty() && index_ == nullptr) {
     index_ = std::make_unique<DescriptorIndex>(options_.index, kind, descriptors.cols);
   }

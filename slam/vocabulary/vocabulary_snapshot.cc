@@ -74,8 +74,9 @@ void Vocabulary::Import(const VocabularySnapshot& s) {
   SLAM_THROW_IF_NOT(InputError, s.word_ids.empty() || s.next_word_id > s.word_ids.back())
       << "vocabulary snapshot: next word id " << s.next_word_id << " is not above the last word "
       << s.word_ids.back();
-  SLAM_THROW_IF_NOT(InputError, s.next_word_id >= 1)
-      << "vocabulary snapshot: next word id " << s.next_word_id << " must be >= 1";
+  SLAM_THROW_IF_NOT(InputError, s.next_word_id >= 1 && s.next_word_id <= kMaxWordId + 1)
+      << "vocabulary snapshot: next word id " << s.next_word_id << " must be in [1, "
+      << kMaxWordId + 1 << "]";
   std::unordered_set<WordId> referenced;
   for (size_t i = 0; i < s.nodes.size(); ++i) {
     const VocabularyNodeWords& n = s.nodes[i];
@@ -100,17 +101,23 @@ void Vocabulary::Import(const VocabularySnapshot& s) {
 
   if (!s.word_ids.empty()) {
     index_ = std::make_unique<DescriptorIndex>(options_.index, s.kind, s.descriptors.cols);
+    index_->ReserveIds(s.word_ids.back());
     const cv::Mat rows = s.descriptors.isContinuous() ? s.descriptors : s.descriptors.clone();
     for (size_t i = 0; i < s.word_ids.size(); ++i) {
       index_->Add(s.word_ids[i], rows.ptr<uint8_t>(static_cast<int>(i)));
     }
     index_->Rebuild();
+    // An imported vocabulary is searched far more than it grows (not at all
+    // when localizing): its index keeps no room for growth.
+    index_->Compact();
+    inverted_.ReserveWords(s.word_ids.back());
   }
   for (const VocabularyNodeWords& n : s.nodes) {
     std::vector<WordId> words;
     for (const auto& [w, count] : n.word_counts) words.insert(words.end(), count, w);
     inverted_.AddNode(n.node, words, n.num_features);
   }
+  inverted_.ShrinkToFit();
   next_word_id_ = s.next_word_id;
 }
 

@@ -95,6 +95,42 @@ TEST(DescriptorIndex, EveryKindFindsTheNoisyCopyAndForgetsRemovedWords) {
   }
 }
 
+// Compact (an imported vocabulary's index) frees the leaves' room for growth
+// without changing a search, and the index can still grow afterwards.
+TEST(DescriptorIndex, CompactKeepsEverySearchAndStillGrows) {
+  for (DescriptorKind kind : {DescriptorKind::kFloat, DescriptorKind::kBinary}) {
+    SCOPED_TRACE(kind == DescriptorKind::kFloat ? "float" : "binary");
+    const SyntheticDescriptors gen = Generator(kind);
+    const cv::Mat words = gen.Random(3000, 11);
+    DescriptorIndex index(DescriptorIndexOptions(), kind, words.cols);
+    for (int i = 0; i < words.rows; ++i) index.Add(i + 1, words.ptr<uint8_t>(i));
+    for (int i = 0; i < 300; ++i) index.Remove(3 * i + 2);
+    index.Rebuild();
+    const cv::Mat queries = gen.Random(300, 12);
+    const auto before = Search(index, queries);
+    const size_t bytes_before = index.MemoryBytes();
+    index.Compact();
+    EXPECT_LT(index.MemoryBytes(), bytes_before);
+    const auto after = Search(index, queries);
+    ASSERT_EQ(before.size(), after.size());
+    for (size_t q = 0; q < before.size(); ++q) {
+      ASSERT_EQ(before[q].size(), after[q].size());
+      for (size_t k = 0; k < before[q].size(); ++k) {
+        EXPECT_EQ(before[q][k].word, after[q][k].word);
+        EXPECT_EQ(before[q][k].distance, after[q][k].distance);
+      }
+    }
+    const cv::Mat more = gen.Random(500, 13);
+    for (int i = 0; i < more.rows; ++i) index.Add(5000 + i, more.ptr<uint8_t>(i));
+    const auto found = Search(index, more);
+    for (int i = 0; i < more.rows; ++i) {
+      ASSERT_FALSE(found[i].empty());
+      EXPECT_EQ(found[i][0].word, 5000 + i);
+      EXPECT_EQ(found[i][0].distance, 0.0f);
+    }
+  }
+}
+
 TEST(DescriptorIndex, EmptyAfterRemovingEverythingAndReusableAfterwards) {
   const SyntheticDescriptors gen = Generator(DescriptorKind::kFloat);
   const cv::Mat words = gen.Random(10, 1);

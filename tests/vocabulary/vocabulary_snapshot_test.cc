@@ -126,6 +126,9 @@ TEST(VocabularySnapshot, InconsistentSnapshotsAndNonEmptyTargetsThrow) {
   s = good;
   s.nodes[1].word_counts[0].second = 0;
   EXPECT_THROW(import(s), InputError);  // zero occurrences
+  s = good;
+  s.next_word_id = kMaxWordId + 2;
+  EXPECT_THROW(import(s), InputError);  // ids beyond what the dense tables accept
 }
 
 }  // namespace
