@@ -97,7 +97,6 @@ CompactFeatures CompactFeatures::Encode(const FrameFeatures& f, DescriptorStorag
       p.angle_ninetieth_deg = static_cast<int16_t>(std::lround(angle * kNinetiethsPerDeg) % 32400);
     }
     p.response = k.response;
-    p.octave = k.octave;
     for (int a = 0; a < 3; ++a) c.half_points_[3 * i + a] = HalfBits(f.points_in_camera[i][a]);
   }
   return c;
@@ -163,7 +162,7 @@ FrameFeatures CompactFeatures::Decode() const {
     const float angle =
         p.angle_ninetieth_deg < 0 ? -1.0f : p.angle_ninetieth_deg / kNinetiethsPerDeg;
     f.keypoints[i] = cv::KeyPoint(p.x_eighth_px / kEighthsPerPx, p.y_eighth_px / kEighthsPerPx,
-                                  p.size_eighth_px / kEighthsPerPx, angle, p.response, p.octave,
+                                  p.size_eighth_px / kEighthsPerPx, angle, p.response, 0,
                                   -1);
     f.points_in_camera[i] = Eigen::Vector3f(FromHalf(half_points_[3 * i]),
                                             FromHalf(half_points_[3 * i + 1]),

@@ -5,9 +5,10 @@
 //    exactly (kFloat32) or quantized to 8 bits per element with a per-row
 //    offset and step (kUint8: value = offset + step * code, error <= step/2,
 //    step = (row max - row min) / 255).
-//  - Keypoints: 16 bytes instead of cv::KeyPoint's 28: x, y and size in
-//    1/8 px (0 to 8191.875 px), angle in 1/90 degree (-1 = none), response
-//    (float) and octave (int32); class_id is not kept (decoded as -1).
+//  - Keypoints: 12 bytes instead of cv::KeyPoint's 28: x, y and size in
+//    1/8 px (0 to 8191.875 px), angle in 1/90 degree (-1 = none) and
+//    response (float; SuperGlue's keypoint scores). Octave and class_id have
+//    no consumer after extraction and are not kept (decoded as 0 and -1).
 //  - 3D points: three half floats (NaN kept; relative error <= 2^-11).
 // Registration and the vocabulary use Decode(), which returns FrameFeatures.
 #pragma once
@@ -37,9 +38,8 @@ struct PackedKeypoint {
   uint16_t size_eighth_px = 0;
   int16_t angle_ninetieth_deg = -90;  // -1 degree: no orientation
   float response = 0.0f;
-  int32_t octave = 0;
 };
-static_assert(sizeof(PackedKeypoint) == 16, "PackedKeypoint is stored as 16 bytes");
+static_assert(sizeof(PackedKeypoint) == 12, "PackedKeypoint is stored as 12 bytes");
 
 class CompactFeatures {
  public:

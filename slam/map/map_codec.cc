@@ -120,33 +120,32 @@ std::vector<Eigen::Vector3f> DecodePoints(const Blob& blob, const std::string& w
 }
 
 Blob EncodePackedKeypoints(const std::vector<PackedKeypoint>& keypoints) {
-  Blob blob(keypoints.size() * 16);
+  Blob blob(keypoints.size() * kPackedKeypointBytes);
   for (size_t n = 0; n < keypoints.size(); ++n) {
     const PackedKeypoint& k = keypoints[n];
-    uint8_t* out = blob.data() + 16 * n;
+    uint8_t* out = blob.data() + kPackedKeypointBytes * n;
     std::memcpy(out, &k.x_eighth_px, 2);
     std::memcpy(out + 2, &k.y_eighth_px, 2);
     std::memcpy(out + 4, &k.size_eighth_px, 2);
     std::memcpy(out + 6, &k.angle_ninetieth_deg, 2);
     std::memcpy(out + 8, &k.response, 4);
-    std::memcpy(out + 12, &k.octave, 4);
   }
   return blob;
 }
 
 std::vector<PackedKeypoint> DecodePackedKeypoints(const Blob& blob, const std::string& what) {
-  SLAM_THROW_IF_NOT(InputError, blob.size() % 16 == 0)
-      << what << ": blob of " << blob.size() << " bytes is not a multiple of 16";
-  std::vector<PackedKeypoint> keypoints(blob.size() / 16);
+  SLAM_THROW_IF_NOT(InputError, blob.size() % kPackedKeypointBytes == 0)
+      << what << ": blob of " << blob.size() << " bytes is not a multiple of "
+      << kPackedKeypointBytes;
+  std::vector<PackedKeypoint> keypoints(blob.size() / kPackedKeypointBytes);
   for (size_t n = 0; n < keypoints.size(); ++n) {
     PackedKeypoint& k = keypoints[n];
-    const uint8_t* in = blob.data() + 16 * n;
+    const uint8_t* in = blob.data() + kPackedKeypointBytes * n;
     std::memcpy(&k.x_eighth_px, in, 2);
     std::memcpy(&k.y_eighth_px, in + 2, 2);
     std::memcpy(&k.size_eighth_px, in + 4, 2);
     std::memcpy(&k.angle_ninetieth_deg, in + 6, 2);
     std::memcpy(&k.response, in + 8, 4);
-    std::memcpy(&k.octave, in + 12, 4);
   }
   return keypoints;
 }

@@ -63,7 +63,7 @@ TEST(CompactFeatures, Float32StorageAndBinaryRowsAreExact) {
 TEST(CompactFeatures, KeypointsAndPointsArePackedClosely) {
   const FrameFeatures f = SurfLikeFeatures(20);
   const CompactFeatures c = CompactFeatures::Encode(f, DescriptorStorage::kUint8);
-  EXPECT_EQ(c.KeypointPointMemoryBytes(), 20u * (16 + 6));
+  EXPECT_EQ(c.KeypointPointMemoryBytes(), 20u * (12 + 6));
   const FrameFeatures d = c.Decode();
   for (int i = 0; i < 20; ++i) {
     const cv::KeyPoint &a = f.keypoints[i], &b = d.keypoints[i];
@@ -77,7 +77,7 @@ TEST(CompactFeatures, KeypointsAndPointsArePackedClosely) {
       EXPECT_LE(std::min(diff, 360.0f - diff), 1.0f / 180 + 1e-4f) << a.angle << " " << b.angle;
     }
     EXPECT_EQ(a.response, b.response);
-    EXPECT_EQ(a.octave, b.octave);
+    EXPECT_EQ(b.octave, 0);  // not kept
     EXPECT_EQ(b.class_id, -1);
     EXPECT_EQ(f.HasPoint(i), d.HasPoint(i));
     EXPECT_EQ(f.HasPoint(i), c.HasPoint(i));

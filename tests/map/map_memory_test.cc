@@ -12,8 +12,8 @@ TEST(ComputeMapMemory, CountsComponents) {
   const MapMemory memory = ComputeMapMemory(map, /*filter_bytes=*/1234);
   EXPECT_EQ(memory.num_nodes, 10u);
   EXPECT_EQ(memory.descriptors_bytes, 10u * 40 * 64 * 4);
-  // Packed keypoints (16 bytes) and half-float points (6 bytes).
-  EXPECT_EQ(memory.keypoints_points_bytes, 10u * 40 * (16 + 6));
+  // Packed keypoints (12 bytes) and half-float points (6 bytes).
+  EXPECT_EQ(memory.keypoints_points_bytes, 10u * 40 * (12 + 6));
   // What the map holds of the vocabulary: 15 word ids and counts per node,
   // and 6 stored words (id + 64 floats).
   EXPECT_EQ(memory.words_index_bytes, 10u * 15 * (4 + 4) + 6 * (4 + 64 * 4));

@@ -205,15 +205,17 @@ TEST_F(MapStoreTest, UnknownSchemaVersionIsRejected) {
   ExpectLoadError("schema version 7 is not supported");
 }
 
-// A map written before the stored vocabulary counts (schema 2) or before
-// compact node features (schema 1) gives a clear error.
+// A map written before 12-byte keypoints (schema 3), the stored vocabulary
+// counts (schema 2) or compact node features (schema 1) gives a clear error.
 TEST_F(MapStoreTest, OldSchemaVersionAsksForARebuild) {
   SaveMap(testing::MakeTestMap(2), path_);
-  Tamper("UPDATE meta SET value = '2' WHERE key = 'schema_version'");
-  ExpectLoadError("schema version 2 is not supported (this build reads 3; the map was written "
+  Tamper("UPDATE meta SET value = '3' WHERE key = 'schema_version'");
+  ExpectLoadError("schema version 3 is not supported (this build reads 4; the map was written "
                   "by an older duskmap, rebuild it)");
+  Tamper("UPDATE meta SET value = '2' WHERE key = 'schema_version'");
+  ExpectLoadError("schema version 2 is not supported (this build reads 4;");
   Tamper("UPDATE meta SET value = '1' WHERE key = 'schema_version'");
-  ExpectLoadError("schema version 1 is not supported (this build reads 3;");
+  ExpectLoadError("schema version 1 is not supported (this build reads 4;");
 }
 
 TEST_F(MapStoreTest, WordsLoadApart) {
