@@ -13,32 +13,26 @@ const std::vector<WordId> kNoWords;
 constexpr size_t kMallocOverhead = 16;
 }  // namespace
 
-ReferenceList::ReferenceList(ReferenceList&& other) noexcept : inline_(), size_(other.size_),
-                                                                capacity_(other.capacity_) {
-  if (other.on_heap()) {
-    heap_ = other.heap_;
-  } else {
-    inline_ = other.inline_;
-  }
-  other.inline_ = WordReference();
-  other.size_ = 0;
-  other.capacity_ = 1;
-}
+ReferenceList::ReferenceList(ReferenceList&& other) noexcept : inline_() { TakeFrom(&other); }
 
 ReferenceList& ReferenceList::operator=(ReferenceList&& other) noexcept {
   if (this == &other) return *this;
   Release();
-  size_ = other.size_;
-  capacity_ = other.capacity_;
-  if (other.on_heap()) {
-    heap_ = other.heap_;
-  } else {
-    inline_ = other.inline_;
-  }
-  other.inline_ = WordReference();
-  other.size_ = 0;
-  other.capacity_ = 1;
+  TakeFrom(&other);
   return *this;
+}
+
+void ReferenceList::TakeFrom(ReferenceList* other) {
+  size_ = other->size_;
+  capacity_ = other->capacity_;
+  if (other->on_heap()) {
+    heap_ = other->heap_;
+  } else {
+    inline_ = other->inline_;
+  }
+  other->inline_ = WordReference();  // the heap block (if any) is ours now
+  other->size_ = 0;
+  other->capacity_ = 1;
 }
 
 void ReferenceList::Release() {

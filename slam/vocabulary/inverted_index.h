@@ -57,6 +57,9 @@ class ReferenceList {
   const WordReference* data() const { return on_heap() ? heap_ : &inline_; }
   WordReference* data() { return on_heap() ? heap_ : &inline_; }
   void Release();  // frees the heap block; back to an empty inline list
+  // Takes other's references (this list must be empty and inline); other is
+  // left empty.
+  void TakeFrom(ReferenceList* other);
 
   union {
     WordReference inline_;  // capacity_ == 1
