@@ -4,6 +4,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <utility>
 
 #include "experiments/command_registry.h"
 #include "slam/core/check.h"
@@ -82,15 +83,14 @@ RunFn SetupLocalize(CLI::App& command) {
     if (args->odometry_cache >= 0) options.localization.odometry_cache_size = args->odometry_cache;
     // The words apart: the localizer imports them into its vocabulary and
     // lets them go, so the run holds them once.
-    MapLoadOptions load;
-    load.load_words = false;
-    const Map map = LoadMap(args->map, load);
+    MapAndWords loaded = LoadMapAndWords(args->map);
+    const Map& map = loaded.map;
     if (args->config.empty()) options.features.type = map.metadata().feature_type;
     options.Check();
     const auto dataset = OpenDataset(args->dataset, args->format);
     std::unique_ptr<SessionReader> session = dataset->OpenSession(args->session);
     const LocalizationRun run =
-        LocalizeSession(map, LoadMapWords(args->map, load), *session, options);
+        LocalizeSession(map, std::move(loaded.words), *session, options);
     if (!args->records.empty()) WriteRecords(args->records, run.records);
     if (!args->trajectory.empty()) WriteCorrectedTrajectory(args->trajectory, run.records);
     const nlohmann::json summary = SummaryToJson(run);

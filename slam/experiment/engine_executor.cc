@@ -242,13 +242,12 @@ void EngineJobExecutor::Localize(const Job& job, const fs::path& job_dir) {
   const EngineOptions options = EngineOptionsForFeature(engine_, FeatureSetupByLabel(job.feature));
   const std::string map_file =
       (OutputDir(output_dir_, "map/" + job.feature + "/" + job.map.label) / kMapFile).string();
-  // The words apart (MapLoadOptions::load_words): the localizer imports them
-  // and lets them go, so the job holds them once.
-  MapLoadOptions load;
-  load.load_words = false;
-  const Map map = LoadMap(map_file, load);
+  // The words apart: the localizer imports them and lets them go, so the job
+  // holds them once.
+  MapAndWords loaded = LoadMapAndWords(map_file);
   FeatureCacheReader source(CacheFile(job.extractor, job.session));
-  const LocalizationRun run = LocalizeSession(map, LoadMapWords(map_file, load), source, options);
+  const LocalizationRun run =
+      LocalizeSession(loaded.map, std::move(loaded.words), source, options);
 
   LocalizationJobSummary summary;
   const RelocalizationSummary& r = run.summary.relocalization;
@@ -271,7 +270,7 @@ void EngineJobExecutor::Localize(const Job& job, const fs::path& job_dir) {
     }
     if (record.relocalized) {
       if (record.num_features > 0) inliers_pct_sum += 100.0 * record.inliers / record.num_features;
-      summary.matched_session_per_frame.push_back(map.sessions()[record.matched_session].name);
+      summary.matched_session_per_frame.push_back(loaded.map.sessions()[record.matched_session].name);
     } else {
       summary.matched_session_per_frame.emplace_back();
     }

@@ -367,27 +367,50 @@ void SaveMap(const Map& map, const std::string& path) {
   FsyncPath(DirectoryOf(path), /*directory=*/true);
 }
 
-Map LoadMap(const std::string& path, const MapLoadOptions& options) {
+namespace {
+
+// What every load checks once the file is open: integrity, schema version,
+// feature type.
+struct MapHeader {
+  std::map<std::string, std::string> meta;
+  MapMetadata metadata;
+};
+
+MapHeader ReadHeader(SqliteDatabase& db, const std::string& path, const MapLoadOptions& options) {
+  if (options.verify_integrity) CheckIntegrity(db);
+  MapHeader header;
+  header.meta = ReadMeta(db);
+  header.metadata = ReadMetadata(header.meta, path, options);
+  return header;
+}
+
+// LoadMap and LoadMapAndWords: with `words_apart`, the words are read into
+// it and the map keeps only the next word id (options.load_words ignored).
+Map LoadMapFrom(const std::string& path, const MapLoadOptions& options, MapWords* words_apart) {
   CheckFileHeader(path);
   SqliteDatabase db(path, /*read_only=*/true);
-  if (options.verify_integrity) CheckIntegrity(db);
-  const std::map<std::string, std::string> meta = ReadMeta(db);
-  const MapMetadata metadata = ReadMetadata(meta, path, options);
-  Map map(metadata);
+  const MapHeader header = ReadHeader(db, path, options);
+  const std::map<std::string, std::string>& meta = header.meta;
+  Map map(header.metadata);
   ReadSessions(db, &map);
-  ReadNodes(db, metadata, &map);
+  ReadNodes(db, header.metadata, &map);
   map.ReserveNodeIdsUpTo(MetaInt(meta, "last_node_id", path));
   ReadLinks(db, &map);
   const int64_t next_word_id = MetaInt(meta, "next_word_id", path);
   size_t num_words = 0;
-  if (options.load_words) {
-    MapWords words = ReadWords(db, metadata, next_word_id);
+  if (words_apart == nullptr && options.load_words) {
+    MapWords words = ReadWords(db, header.metadata, next_word_id);
     num_words = words.ids.size();
     map.SetWords(std::move(words));
   } else {
-    SqliteStatement count = db.Prepare("SELECT count(*) FROM words");
-    SLAM_THROW_IF_NOT(InputError, count.Step()) << path << ": cannot count the words";
-    num_words = static_cast<size_t>(count.Int(0));
+    if (words_apart != nullptr) {
+      *words_apart = ReadWords(db, header.metadata, next_word_id);
+      num_words = words_apart->ids.size();
+    } else {
+      SqliteStatement count = db.Prepare("SELECT count(*) FROM words");
+      SLAM_THROW_IF_NOT(InputError, count.Step()) << path << ": cannot count the words";
+      num_words = static_cast<size_t>(count.Int(0));
+    }
     MapWords empty;
     empty.next_word_id = static_cast<WordId>(next_word_id);
     map.SetWords(std::move(empty));
@@ -396,13 +419,24 @@ Map LoadMap(const std::string& path, const MapLoadOptions& options) {
   return map;
 }
 
+}  // namespace
+
+Map LoadMap(const std::string& path, const MapLoadOptions& options) {
+  return LoadMapFrom(path, options, /*words_apart=*/nullptr);
+}
+
+MapAndWords LoadMapAndWords(const std::string& path, const MapLoadOptions& options) {
+  MapAndWords loaded;
+  loaded.map = LoadMapFrom(path, options, &loaded.words);
+  return loaded;
+}
+
 MapWords LoadMapWords(const std::string& path, const MapLoadOptions& options) {
   CheckFileHeader(path);
   SqliteDatabase db(path, /*read_only=*/true);
-  if (options.verify_integrity) CheckIntegrity(db);
-  const std::map<std::string, std::string> meta = ReadMeta(db);
-  const MapMetadata metadata = ReadMetadata(meta, path, options);
-  MapWords words = ReadWords(db, metadata, MetaInt(meta, "next_word_id", path));
+  const MapHeader header = ReadHeader(db, path, options);
+  const std::map<std::string, std::string>& meta = header.meta;
+  MapWords words = ReadWords(db, header.metadata, MetaInt(meta, "next_word_id", path));
   SLAM_THROW_IF_NOT(InputError, MetaInt(meta, "num_words", path) ==
                                     static_cast<int64_t>(words.ids.size()))
       << path << ": incomplete map (row counts differ from those recorded at save)";

@@ -28,7 +28,8 @@ struct MapLoadOptions {
   bool verify_integrity = true;       // run PRAGMA quick_check (linear in the file size)
   // false: leave the vocabulary's word descriptors out of the Map (its
   // words().ids stay empty, next_word_id is kept); LoadMapWords reads them
-  // apart, for a localizer that imports them and then lets them go.
+  // apart (LoadMapAndWords does both at once), for a localizer that imports
+  // them and then lets them go.
   bool load_words = true;
 };
 
@@ -40,5 +41,15 @@ Map LoadMap(const std::string& path, const MapLoadOptions& options = MapLoadOpti
 // The vocabulary's words of a stored map, with the same checks as LoadMap
 // (options.load_words is ignored).
 MapWords LoadMapWords(const std::string& path, const MapLoadOptions& options = MapLoadOptions());
+
+// The map without its words plus the words apart (as load_words = false
+// followed by LoadMapWords), from one opening and one integrity check of the
+// file: what a localizer that imports the words and lets them go needs.
+struct MapAndWords {
+  Map map;
+  MapWords words;
+};
+MapAndWords LoadMapAndWords(const std::string& path,
+                            const MapLoadOptions& options = MapLoadOptions());
 
 }  // namespace duskmap

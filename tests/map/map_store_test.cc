@@ -234,6 +234,19 @@ TEST_F(MapStoreTest, WordsLoadApart) {
   EXPECT_THROW(LoadMapWords(path_), InputError);
 }
 
+TEST_F(MapStoreTest, MapAndWordsLoadTogetherAsApart) {
+  const Map map = testing::MakeTestMap(2);
+  SaveMap(map, path_);
+  const MapAndWords loaded = LoadMapAndWords(path_);
+  EXPECT_TRUE(loaded.map.words().ids.empty());
+  EXPECT_EQ(loaded.map.words().next_word_id, map.words().next_word_id);
+  EXPECT_EQ(loaded.map.nodes().size(), map.nodes().size());
+  EXPECT_EQ(loaded.words.ids, map.words().ids);
+  EXPECT_TRUE(SameMatrix(loaded.words.descriptors, map.words().descriptors));
+  Tamper("DELETE FROM words WHERE id = 4");
+  EXPECT_THROW(LoadMapAndWords(path_), InputError);
+}
+
 TEST_F(MapStoreTest, VocabularyRoundTripsWithCountsAndNextWordId) {
   Map map = testing::MakeTestMap(2);
   MapWords words = map.words();
