@@ -27,7 +27,7 @@ Likelihood ComputeLikelihood(const InvertedIndex& index, const std::vector<WordI
   const int extra = query_in_index ? 0 : 1;
   const double num_nodes = static_cast<double>(index.num_nodes() + extra);
   for (WordId w : query_words) {
-    const ReferenceSpan refs = index.References(w);
+    const ReferenceList& refs = index.References(w);
     const int nodes_with_word = static_cast<int>(refs.size()) + extra;
     if (nodes_with_word == 0) continue;
     const double idf = std::log10(num_nodes / nodes_with_word);

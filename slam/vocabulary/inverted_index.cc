@@ -8,6 +8,7 @@
 namespace duskmap {
 namespace {
 const std::vector<WordId> kNoWords;
+const ReferenceList kNoReferences;
 // What glibc's malloc adds to a block on average (an 8-byte header, sizes
 // rounded up to 16): counted for every separate heap block.
 constexpr size_t kMallocOverhead = 16;
@@ -137,9 +138,9 @@ std::optional<std::vector<WordId>> InvertedIndex::RemoveNode(NodeId node) {
   return orphaned;  // distinct_words was sorted, so is this
 }
 
-ReferenceSpan InvertedIndex::References(WordId word) const {
+const ReferenceList& InvertedIndex::References(WordId word) const {
   const uint32_t pos = word_slots_.Find(word);
-  return pos == WordSlots::kNone ? ReferenceSpan() : ReferenceSpan(lists_[pos]);
+  return pos == WordSlots::kNone ? kNoReferences : lists_[pos];
 }
 
 const std::vector<WordId>& InvertedIndex::NodeWords(NodeId node) const {

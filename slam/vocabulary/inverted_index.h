@@ -70,22 +70,6 @@ class ReferenceList {
 };
 static_assert(sizeof(ReferenceList) == 24, "one word's references take 24 bytes");
 
-// A read-only view of a word's references (empty for an unknown word).
-class ReferenceSpan {
- public:
-  ReferenceSpan() = default;
-  explicit ReferenceSpan(const ReferenceList& list) : begin_(list.begin()), size_(list.size()) {}
-  const WordReference* begin() const { return begin_; }
-  const WordReference* end() const { return begin_ + size_; }
-  size_t size() const { return size_; }
-  bool empty() const { return size_ == 0; }
-  const WordReference& operator[](size_t i) const { return begin_[i]; }
-
- private:
-  const WordReference* begin_ = nullptr;
-  size_t size_ = 0;
-};
-
 class InvertedIndex {
  public:
   // Registers `node` with its quantized words (kNoWord entries are ignored)
@@ -101,7 +85,7 @@ class InvertedIndex {
   size_t num_nodes() const { return nodes_.size(); }
   size_t num_words() const { return lists_.size(); }
   // Nodes referencing `word` (empty when none); valid until the next change.
-  ReferenceSpan References(WordId word) const;
+  const ReferenceList& References(WordId word) const;
   // Distinct positive words of a node, sorted (empty when absent).
   const std::vector<WordId>& NodeWords(NodeId node) const;
   int NodeFeatureCount(NodeId node) const;
