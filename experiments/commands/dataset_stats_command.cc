@@ -37,6 +37,8 @@ RunFn SetupStats(CLI::App& command) {
   command.add_option("--dataset", args->dataset_path, "synthetic dataset folder (manifest.json)")->required();
   command.add_option("--frame-step", args->options.frame_step, "anchor spacing in frames");
   command.add_option("--max-features", args->options.max_features, "features per frame and detector");
+  command.add_option("--min-correct", args->options.min_correct_matches,
+                     "correct matches a frame pair needs to count as found (default 10)");
   return [args] {
     const bool synthetic = std::filesystem::exists(args->dataset_path + "/" + kManifestFileName);
     std::unique_ptr<DatasetReader> dataset =

@@ -94,6 +94,13 @@ void AddLivingRoom(SceneBuilder& b, const ApartmentOptions& options) {
                                  120.0 * options.lamp_intensity_scale, options.living_lamp_on_from);
   b.AddBox({5.58, 4.18, 0.0}, {5.62, 4.22, 1.45}, room, TextureKind::kWood, {0.05f, 0.05f, 0.05f});
   AddShade(b, floor_lamp, {0.15, 0.15, 0.15});
+  if (options.living_ceiling_cd > 0.0) {
+    const double z = options.wall_height_m - 0.25;
+    const int lamp = AddLamp(s, "living ceiling", {3.0, 2.6, z}, room,
+                             options.living_ceiling_cd * options.lamp_intensity_scale, "");
+    b.AddBox({2.85, 2.45, z + 0.05}, {3.15, 2.75, z + 0.2}, room, TextureKind::kLampShade,
+             {0.55f, 0.75f, 0.85f}, Emission::kLamp, lamp);
+  }
 }
 
 void AddKitchen(SceneBuilder& b, const ApartmentOptions& options) {
@@ -238,6 +245,13 @@ void AddBedroom(SceneBuilder& b, const ApartmentOptions& options) {
   const int lamp = AddLamp(s, "bedside lamp", {4.65, 8.72, 0.75}, room, 45.0 * options.lamp_intensity_scale, "");
   b.AddBox({4.62, 8.69, 0.55}, {4.68, 8.75, 0.62}, room, TextureKind::kPaint, {0.1f, 0.1f, 0.1f});
   AddShade(b, lamp, {0.1, 0.1, 0.12});
+  if (options.bedroom_ceiling_cd > 0.0) {
+    const double z = options.wall_height_m - 0.25;
+    const int ceiling = AddLamp(s, "bedroom ceiling", {2.6, 7.0, z}, room,
+                                options.bedroom_ceiling_cd * options.lamp_intensity_scale, "");
+    b.AddBox({2.45, 6.85, z + 0.05}, {2.75, 7.15, z + 0.2}, room, TextureKind::kLampShade,
+             {0.55f, 0.75f, 0.85f}, Emission::kLamp, ceiling);
+  }
   // Wardrobe, dresser with objects, bookshelf, rug, plant, laundry basket.
   b.AddBoxWithFront({4.9, 6.2, 0.0}, {5.5, 8.2, 2.1}, {-1, 0}, room, TextureKind::kWood,
                     {0.2f, 0.3f, 0.4f}, TextureKind::kCabinet, {0.22f, 0.32f, 0.42f});
@@ -266,6 +280,8 @@ void ApartmentOptions::Check() const {
       << "scene.wall_height_m must be in [2.2, 4], got " << wall_height_m;
   SLAM_THROW_IF_NOT(ConfigError, lamp_intensity_scale > 0.0)
       << "scene.lamp_intensity_scale must be > 0, got " << lamp_intensity_scale;
+  SLAM_THROW_IF_NOT(ConfigError, bedroom_ceiling_cd >= 0.0 && living_ceiling_cd >= 0.0)
+      << "scene.bedroom_ceiling_cd and scene.living_ceiling_cd must be >= 0";
   const bool time_ok = living_lamp_on_from.size() == 5 && living_lamp_on_from[2] == ':';
   SLAM_THROW_IF_NOT(ConfigError, time_ok)
       << "scene.living_lamp_on_from must be \"HH:MM\", got \"" << living_lamp_on_from << "\"";

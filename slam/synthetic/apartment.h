@@ -21,6 +21,8 @@ struct ApartmentOptions {
   double wall_height_m = 2.5;  // floor to ceiling
   double lamp_intensity_scale = 1.6;  // multiplies every lamp's candela (tuned for realism)
   std::string living_lamp_on_from = "17:54";  // clock time the living-room floor lamp goes on
+  double bedroom_ceiling_cd = 0.0;  // a bedroom ceiling light on in every session; 0 = none
+  double living_ceiling_cd = 0.0;   // a living-room ceiling light on in every session; 0 = none
 
   void Check() const;
 };

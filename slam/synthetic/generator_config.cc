@@ -13,6 +13,8 @@ void ReadScene(JsonFields f, ApartmentOptions* o) {
   f.Read("wall_height_m", &o->wall_height_m);
   f.Read("lamp_intensity_scale", &o->lamp_intensity_scale);
   f.Read("living_lamp_on_from", &o->living_lamp_on_from);
+  f.Read("bedroom_ceiling_cd", &o->bedroom_ceiling_cd);
+  f.Read("living_ceiling_cd", &o->living_ceiling_cd);
   f.RejectUnknown();
 }
 

@@ -35,6 +35,15 @@ TEST(ReadGeneratorConfig, DefaultConfigFileIsValidAndMatchesThePaper) {
   EXPECT_EQ(config.sessions[11].clock_time, "19:42");
   EXPECT_EQ(config.camera.width, 640);
   EXPECT_EQ(config.scene.living_lamp_on_from, "17:54");
+  EXPECT_EQ(config.scene.bedroom_ceiling_cd, 0.0);  // the optional ceiling lights are off
+  EXPECT_EQ(config.scene.living_ceiling_cd, 0.0);
+}
+
+TEST(ReadGeneratorConfig, ReadsTheOptionalCeilingLights) {
+  const GeneratorConfig config = ReadGeneratorConfig(
+      WriteConfig("ceiling", R"({"scene": {"bedroom_ceiling_cd": 70, "living_ceiling_cd": 80}})"));
+  EXPECT_EQ(config.scene.bedroom_ceiling_cd, 70.0);
+  EXPECT_EQ(config.scene.living_ceiling_cd, 80.0);
 }
 
 TEST(ReadGeneratorConfig, UnknownKeyIsNamed) {

@@ -85,6 +85,23 @@ TEST_F(LightingTest, LampsCastShadows) {
   EXPECT_EQ(Luminance(behind_bed.lamps), 0.0f);
 }
 
+// The optional bedroom ceiling light (off by default; docs/synthetic_dataset.md,
+// "What was tried") lights the floor behind the bed that the bedside lamp
+// cannot reach, and is on in every session.
+TEST_F(LightingTest, OptionalBedroomCeilingLightReachesBehindTheBed) {
+  ApartmentOptions options;
+  options.bedroom_ceiling_cd = 70.0;
+  const Scene lit = BuildApartment(options);
+  ASSERT_EQ(lit.lamps.size(), scene_->lamps.size() + 1);
+  const SessionLighting l = ComputeSessionLighting(options_, lit, 20.75);
+  EXPECT_TRUE(l.lamp_on.back());
+  const IrradianceParts behind_bed =
+      ComputeDirectIrradiance(lit, l, {1.2, 7.0, 0.001}, {0, 0, 1}, 3, -1);
+  EXPECT_GT(Luminance(behind_bed.lamps), 1.0f);
+  options.bedroom_ceiling_cd = -1.0;
+  EXPECT_THROW(BuildApartment(options), ConfigError);
+}
+
 TEST_F(LightingTest, LivingRoomLampSwitchesOnAt1754) {
   int lamp = -1;
   for (size_t i = 0; i < scene_->lamps.size(); ++i) {
