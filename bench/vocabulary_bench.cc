@@ -3,7 +3,9 @@
 // (quantization + likelihood + filter, lookup-only as in localization) on
 // synthetic multi-session maps of 200, 1,200 and 10,000 nodes, for SIFT-like
 // float and ORB/BRIEF-like binary descriptors. Also compares the binary
-// index kinds, and reports vocabulary memory per word.
+// index kinds, and reports vocabulary memory per word. "float_u8" is the
+// float map with its words quantized to 8 bits (the engine's default word
+// storage, docs/engine.md).
 //
 // The maps are realistic in their statistics: each node sees 360 landmarks of
 // a sliding window (160 shared with the previous node) plus 40 of 1,000
@@ -55,7 +57,8 @@ size_t HeapBytes() {
   return info.uordblks + info.hblkhd;
 }
 
-std::unique_ptr<BenchMap> BuildMap(DescriptorKind kind, int nodes, IndexKind binary_kind) {
+std::unique_ptr<BenchMap> BuildMap(DescriptorKind kind, int nodes, IndexKind binary_kind,
+                                   DescriptorStorage word_storage) {
   auto map = std::make_unique<BenchMap>();
   SyntheticDescriptorOptions go;
   go.kind = kind;
@@ -63,6 +66,7 @@ std::unique_ptr<BenchMap> BuildMap(DescriptorKind kind, int nodes, IndexKind bin
   map->gen = std::make_unique<SyntheticDescriptors>(go);
   LoopClosureOptions options;
   options.vocabulary.index.binary_kind = binary_kind;
+  options.vocabulary.index.float_storage = word_storage;
   const size_t heap_before = HeapBytes();
   Stopwatch watch;
   map->lcd = std::make_unique<LoopClosureDetector>(options);
@@ -87,13 +91,15 @@ std::unique_ptr<BenchMap> BuildMap(DescriptorKind kind, int nodes, IndexKind bin
 }
 
 // One map alive at a time (the 10,000-node float map alone holds ~1.5 GB).
-BenchMap& GetMap(DescriptorKind kind, int nodes, IndexKind binary_kind = IndexKind::kBitKdTree) {
-  static std::tuple<DescriptorKind, int, IndexKind> key{DescriptorKind::kFloat, -1, binary_kind};
+BenchMap& GetMap(DescriptorKind kind, int nodes, IndexKind binary_kind = IndexKind::kBitKdTree,
+                 DescriptorStorage word_storage = DescriptorStorage::kFloat32) {
+  static std::tuple<DescriptorKind, int, IndexKind, DescriptorStorage> key{
+      DescriptorKind::kFloat, -1, binary_kind, word_storage};
   static std::unique_ptr<BenchMap> map;
-  const auto wanted = std::make_tuple(kind, nodes, binary_kind);
+  const auto wanted = std::make_tuple(kind, nodes, binary_kind, word_storage);
   if (!map || key != wanted) {
     map.reset();
-    map = BuildMap(kind, nodes, binary_kind);
+    map = BuildMap(kind, nodes, binary_kind, word_storage);
     key = wanted;
   }
   return *map;
@@ -108,12 +114,22 @@ void MapCounters(benchmark::State& state, const BenchMap& map) {
   state.counters["build_s"] = map.build_s;
 }
 
+// range(0): 0 float (float32 words), 1 binary, 2 float with 8-bit words.
 DescriptorKind KindOf(const benchmark::State& state) {
-  return state.range(0) == 0 ? DescriptorKind::kFloat : DescriptorKind::kBinary;
+  return state.range(0) == 1 ? DescriptorKind::kBinary : DescriptorKind::kFloat;
+}
+
+DescriptorStorage WordStorageOf(const benchmark::State& state) {
+  return state.range(0) == 2 ? DescriptorStorage::kUint8 : DescriptorStorage::kFloat32;
+}
+
+BenchMap& MapOf(const benchmark::State& state) {
+  return GetMap(KindOf(state), static_cast<int>(state.range(1)), IndexKind::kBitKdTree,
+                WordStorageOf(state));
 }
 
 void BM_Quantize400(benchmark::State& state) {
-  BenchMap& map = GetMap(KindOf(state), static_cast<int>(state.range(1)));
+  BenchMap& map = MapOf(state);
   int q = 0;
   double matched = 0;
   for (auto _ : state) {
@@ -127,7 +143,7 @@ void BM_Quantize400(benchmark::State& state) {
 }
 
 void BM_Likelihood(benchmark::State& state) {
-  BenchMap& map = GetMap(KindOf(state), static_cast<int>(state.range(1)));
+  BenchMap& map = MapOf(state);
   const LoopClosureDetector& lcd = *map.lcd;
   int q = 0;
   for (auto _ : state) {
@@ -141,7 +157,7 @@ void BM_Likelihood(benchmark::State& state) {
 }
 
 void BM_BayesUpdate(benchmark::State& state) {
-  BenchMap& map = GetMap(KindOf(state), static_cast<int>(state.range(1)));
+  BenchMap& map = MapOf(state);
   const LoopClosureDetector& lcd = *map.lcd;
   BayesFilter filter(BayesFilterOptions(), &lcd.graph());
   for (NodeId n : lcd.filter().Places()) filter.AddPlace(n);
@@ -165,7 +181,7 @@ void BM_BayesUpdate(benchmark::State& state) {
 
 // The whole LCD step of a localization frame.
 void BM_Lcd(benchmark::State& state) {
-  BenchMap& map = GetMap(KindOf(state), static_cast<int>(state.range(1)));
+  BenchMap& map = MapOf(state);
   map.lcd->Localize(map.queries[0]);  // transition columns built once
   int q = 0;
   for (auto _ : state) {
@@ -194,9 +210,10 @@ void BM_BinaryIndexQuantize400(benchmark::State& state) {
 
 // Registered per map so that each map is built once.
 void RegisterAll() {
-  for (int kind : {0, 1}) {
+  for (int kind : {0, 1, 2}) {
     for (int nodes : {200, 1200, 10000}) {
-      const std::string suffix = std::string(kind == 0 ? "/float/" : "/binary/") + std::to_string(nodes);
+      const char* name = kind == 0 ? "/float/" : kind == 1 ? "/binary/" : "/float_u8/";
+      const std::string suffix = name + std::to_string(nodes);
       benchmark::RegisterBenchmark(("BM_Quantize400" + suffix).c_str(), BM_Quantize400)
           ->Args({kind, nodes})->Unit(benchmark::kMillisecond)->MinTime(0.5);
       benchmark::RegisterBenchmark(("BM_Likelihood" + suffix).c_str(), BM_Likelihood)

@@ -7,6 +7,9 @@ namespace duskmap {
 EngineOptions::EngineOptions() {
   optimizer.max_error_ratio = 0.0;                    // RGBD/OptimizeMaxError (paper: 0)
   loop_closure.vocabulary.bad_signature_ratio = 0.2;  // Kp/BadSignRatio (paper: 0.2)
+  // Float words in 8 bits, as the nodes' descriptors (a quarter of the
+  // vocabulary's descriptor bytes; docs/engine.md, "Quantized words").
+  loop_closure.vocabulary.index.float_storage = DescriptorStorage::kUint8;
 }
 
 void OdometryNoiseOptions::Check() const {
@@ -96,6 +99,12 @@ EngineOptions ReadEngineOptions(JsonFields& fields) {
   lcd.Read("loop_threshold", &o.loop_closure.loop_threshold);
   lcd.Read("aggressive_loop_threshold", &o.loop_closure.aggressive_loop_threshold);
   lcd.Read("bad_signature_ratio", &o.loop_closure.vocabulary.bad_signature_ratio);
+  std::string word_storage = DescriptorStorageName(o.loop_closure.vocabulary.index.float_storage);
+  lcd.Read("word_storage", &word_storage);
+  SLAM_THROW_IF_NOT(ConfigError, word_storage == "float32" || word_storage == "uint8")
+      << "EngineOptions.loop_closure.word_storage: must be \"float32\" or \"uint8\", got \""
+      << word_storage << "\"";
+  o.loop_closure.vocabulary.index.float_storage = ParseDescriptorStorage(word_storage);
   lcd.RejectUnknown();
   JsonFields proximity = fields.Child("proximity");
   proximity.Read("local_radius_m", &o.proximity.local_radius_m);
@@ -152,7 +161,8 @@ nlohmann::json EngineOptionsToJson(const EngineOptions& o) {
       {"loop_closure",
        {{"loop_threshold", o.loop_closure.loop_threshold},
         {"aggressive_loop_threshold", o.loop_closure.aggressive_loop_threshold},
-        {"bad_signature_ratio", o.loop_closure.vocabulary.bad_signature_ratio}}},
+        {"bad_signature_ratio", o.loop_closure.vocabulary.bad_signature_ratio},
+        {"word_storage", DescriptorStorageName(o.loop_closure.vocabulary.index.float_storage)}}},
       {"proximity",
        {{"local_radius_m", o.proximity.local_radius_m},
         {"max_angle_deg", o.proximity.max_angle_deg}}},

@@ -42,6 +42,7 @@ Mapper::Mapper(const EngineOptions& options)
   metadata.engine_parameters_json = EngineOptionsToJson(options_).dump();
   metadata.descriptor_kind = extractor_->kind();
   metadata.descriptor_storage = options_.mapping.descriptor_storage;
+  metadata.word_storage = options_.loop_closure.vocabulary.index.float_storage;
   map_ = Map(metadata);
 }
 

@@ -24,21 +24,6 @@ float FromHalf(uint16_t bits) { return static_cast<float>(cv::float16_t::fromBit
 
 }  // namespace
 
-const char* DescriptorStorageName(DescriptorStorage storage) {
-  switch (storage) {
-    case DescriptorStorage::kFloat32: return "float32";
-    case DescriptorStorage::kUint8: return "uint8";
-  }
-  return "unknown";
-}
-
-DescriptorStorage ParseDescriptorStorage(const std::string& name) {
-  if (name == "float32") return DescriptorStorage::kFloat32;
-  SLAM_THROW_IF_NOT(ConfigError, name == "uint8")
-      << "descriptor storage '" << name << "' is not one of float32, uint8";
-  return DescriptorStorage::kUint8;
-}
-
 CompactFeatures CompactFeatures::Encode(const FrameFeatures& f, DescriptorStorage storage) {
   const size_t n = f.size();
   SLAM_THROW_IF_NOT(InputError, static_cast<size_t>(f.descriptors.rows) == n ||
@@ -61,21 +46,12 @@ CompactFeatures CompactFeatures::Encode(const FrameFeatures& f, DescriptorStorag
       c.row_offsets_.resize(n);
       c.row_steps_.resize(n);
       for (int r = 0; r < f.descriptors.rows; ++r) {
-        const float* row = f.descriptors.ptr<float>(r);
-        float lo = row[0], hi = row[0];
-        for (int k = 1; k < f.descriptors.cols; ++k) {
-          lo = std::min(lo, row[k]);
-          hi = std::max(hi, row[k]);
-        }
-        SLAM_THROW_IF_NOT(InputError, std::isfinite(lo) && std::isfinite(hi))
+        RowScale scale;
+        SLAM_THROW_IF_NOT(InputError, QuantizeRow(f.descriptors.ptr<float>(r), f.descriptors.cols,
+                                                  c.codes_.ptr<uint8_t>(r), &scale))
             << "CompactFeatures: descriptor " << r << " is not finite";
-        const float step = (hi - lo) / 255.0f;
-        c.row_offsets_[r] = lo;
-        c.row_steps_[r] = step;
-        uint8_t* code = c.codes_.ptr<uint8_t>(r);
-        for (int k = 0; k < f.descriptors.cols; ++k) {
-          code[k] = step > 0.0f ? static_cast<uint8_t>(std::lround((row[k] - lo) / step)) : 0;
-        }
+        c.row_offsets_[r] = scale.offset;
+        c.row_steps_[r] = scale.step;
       }
     } else {
       c.codes_ = f.descriptors.clone();
@@ -146,10 +122,8 @@ FrameFeatures CompactFeatures::Decode() const {
     if (!row_steps_.empty()) {
       f.descriptors.create(codes_.rows, codes_.cols, CV_32F);
       for (int r = 0; r < codes_.rows; ++r) {
-        const uint8_t* code = codes_.ptr<uint8_t>(r);
-        float* row = f.descriptors.ptr<float>(r);
-        const float lo = row_offsets_[r], step = row_steps_[r];
-        for (int k = 0; k < codes_.cols; ++k) row[k] = lo + step * code[k];
+        DequantizeRow(codes_.ptr<uint8_t>(r), codes_.cols, {row_offsets_[r], row_steps_[r]},
+                      f.descriptors.ptr<float>(r));
       }
     } else {
       f.descriptors = codes_.clone();

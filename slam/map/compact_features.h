@@ -3,8 +3,7 @@
 // node features").
 //  - Descriptors: binary rows are kept exactly; float rows are kept either
 //    exactly (kFloat32) or quantized to 8 bits per element with a per-row
-//    offset and step (kUint8: value = offset + step * code, error <= step/2,
-//    step = (row max - row min) / 255).
+//    offset and step (kUint8, features/descriptor_quantization.h).
 //  - Keypoints: 12 bytes instead of cv::KeyPoint's 28: x, y and size in
 //    1/8 px (0 to 8191.875 px), angle in 1/90 degree (-1 = none) and
 //    response (float; SuperGlue's keypoint scores). Octave and class_id have
@@ -19,18 +18,10 @@
 
 #include <opencv2/core.hpp>
 
+#include "slam/features/descriptor_quantization.h"
 #include "slam/features/frame_features.h"
 
 namespace duskmap {
-
-enum class DescriptorStorage {
-  kFloat32,  // float descriptors as extracted
-  kUint8,    // float descriptors quantized to 8 bits per element (per-row offset, step)
-};
-
-const char* DescriptorStorageName(DescriptorStorage storage);
-// Throws ConfigError for an unknown name ("float32", "uint8").
-DescriptorStorage ParseDescriptorStorage(const std::string& name);
 
 struct PackedKeypoint {
   uint16_t x_eighth_px = 0;

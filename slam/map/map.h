@@ -36,6 +36,10 @@ struct MapMetadata {
   // How the nodes keep float descriptors (compact_features.h); every node of
   // a map uses this storage.
   DescriptorStorage descriptor_storage = DescriptorStorage::kFloat32;
+  // How the vocabulary keeps float words (vocabulary/word_types.h,
+  // WordRowFormat); the words a map stores are in this form. Binary words
+  // are exact whatever this says.
+  DescriptorStorage word_storage = DescriptorStorage::kFloat32;
 };
 
 struct MapSession {
@@ -68,10 +72,11 @@ struct MapNode {
   Rigid3d map_from_camera() const { return map_from_body * body_from_camera; }
 };
 
-// The vocabulary's words as stored: one descriptor row per word.
+// The vocabulary's words as stored: one row per word, in the form
+// MapMetadata::word_storage says (VocabularySnapshot::descriptors).
 struct MapWords {
   std::vector<WordId> ids;  // increasing
-  cv::Mat descriptors;      // one row per id, same type/cols as the nodes' descriptors
+  cv::Mat descriptors;      // one stored row per id
   WordId next_word_id = 1;  // the id a new word would get (ids are never reused)
 };
 

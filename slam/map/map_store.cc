@@ -47,6 +47,7 @@ void WriteMeta(SqliteDatabase& db, const Map& map) {
       {"descriptor_cv_type", std::to_string(m.descriptor_cv_type)},
       {"descriptor_cols", std::to_string(m.descriptor_cols)},
       {"descriptor_storage", DescriptorStorageName(m.descriptor_storage)},
+      {"word_storage", DescriptorStorageName(m.word_storage)},
       {"last_node_id", std::to_string(map.last_node_id())},
       {"num_sessions", std::to_string(map.sessions().size())},
       {"num_nodes", std::to_string(map.nodes().size())},
@@ -234,6 +235,10 @@ MapMetadata ReadMetadata(const std::map<std::string, std::string>& meta, const s
   SLAM_THROW_IF_NOT(InputError, storage == "float32" || storage == "uint8")
       << path << ": unknown descriptor storage '" << storage << "'";
   m.descriptor_storage = ParseDescriptorStorage(storage);
+  const std::string& word_storage = MetaValue(meta, "word_storage", path);
+  SLAM_THROW_IF_NOT(InputError, word_storage == "float32" || word_storage == "uint8")
+      << path << ": unknown word storage '" << word_storage << "'";
+  m.word_storage = ParseDescriptorStorage(word_storage);
   return m;
 }
 
@@ -323,9 +328,14 @@ MapWords ReadWords(SqliteDatabase& db, const MapMetadata& m, int64_t next_word_i
   words.next_word_id = static_cast<WordId>(next_word_id);
   std::vector<cv::Mat> rows;
   SqliteStatement select = db.Prepare("SELECT id, descriptor FROM words ORDER BY id");
+  // The stored form of a word (map.h, MapMetadata::word_storage).
+  const WordRowFormat format = WordRowFormatFor(m.descriptor_kind, m.word_storage);
+  const bool floats = format == WordRowFormat::kFloat32;
+  const int cols = floats ? m.descriptor_cols : static_cast<int>(WordRowBytes(format, m.descriptor_cols));
+  const int type = floats ? m.descriptor_cv_type : CV_8U;
   while (select.Step()) {
     words.ids.push_back(static_cast<WordId>(select.Int(0)));
-    rows.push_back(DecodeMatrix(select.Blob(1), 1, m.descriptor_cols, m.descriptor_cv_type,
+    rows.push_back(DecodeMatrix(select.Blob(1), 1, cols, type,
                                 db.path() + ": word " + std::to_string(words.ids.back())));
   }
   if (!rows.empty()) cv::vconcat(rows, words.descriptors);

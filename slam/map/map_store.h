@@ -21,7 +21,7 @@
 namespace duskmap {
 
 // 2: compact node features; 3: word counts, n_j, next word id; 4: 12-byte keypoints (no octave)
-inline constexpr int kMapSchemaVersion = 4;
+inline constexpr int kMapSchemaVersion = 5;
 
 struct MapLoadOptions {
   std::string expected_feature_type;  // "" accepts any; otherwise must equal the map's

@@ -14,6 +14,7 @@ VocabularySnapshot MapVocabularySnapshot(const Map& map) {
 VocabularySnapshot MapVocabularySnapshot(const Map& map, const MapWords& words) {
   VocabularySnapshot snapshot;
   snapshot.kind = map.metadata().descriptor_kind;
+  snapshot.float_storage = map.metadata().word_storage;
   snapshot.word_ids = words.ids;
   snapshot.descriptors = words.descriptors;
   snapshot.next_word_id = words.next_word_id;
@@ -34,6 +35,13 @@ VocabularySnapshot MapVocabularySnapshot(const Map& map, const MapWords& words) 
 
 void SetMapVocabulary(const VocabularySnapshot& snapshot, Map* map) {
   SLAM_CHECK(map != nullptr);
+  const MapMetadata& m = map->metadata();
+  SLAM_THROW_IF_NOT(InputError,
+                    snapshot.word_ids.empty() ||
+                        snapshot.format() == WordRowFormatFor(m.descriptor_kind, m.word_storage))
+      << "map vocabulary: the words are stored as "
+      << DescriptorStorageName(snapshot.float_storage) << ", the map records "
+      << DescriptorStorageName(m.word_storage);
   std::set<NodeId> listed;
   for (const VocabularyNodeWords& n : snapshot.nodes) {
     SLAM_THROW_IF_NOT(InputError, map->HasNode(n.node))

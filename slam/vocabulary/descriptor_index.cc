@@ -123,7 +123,10 @@ class DescriptorIndex::Backend {
   Backend(const DescriptorIndexOptions& options, DescriptorKind kind, int cols)
       : options_(options), kind_(kind), cols_(cols),
         index_kind_(kind == DescriptorKind::kFloat ? options.float_kind : options.binary_kind),
-        row_bytes_(kind == DescriptorKind::kFloat ? cols * sizeof(float) : cols) {
+        format_(WordRowFormatFor(kind, options.float_storage)),
+        row_bytes_(QueryRowBytes(format_, cols)),
+        stored_bytes_(WordRowBytes(format_, cols)),
+        encoded_(stored_bytes_) {
     if (index_kind_ == IndexKind::kKdTree || index_kind_ == IndexKind::kBitKdTree) {
       KdForestOptions o;
       o.trees = options.kd_trees;
@@ -131,7 +134,7 @@ class DescriptorIndex::Backend {
       o.leaf_size = options.kd_leaf_size;
       o.rebuild_factor = options.rebalancing_factor;
       o.seed = options.seed;
-      forest_ = std::make_unique<KdForest>(o, kind, cols);
+      forest_ = std::make_unique<KdForest>(o, format_, cols);
     }
   }
 
@@ -143,31 +146,40 @@ class DescriptorIndex::Backend {
 
   IndexKind index_kind() const { return index_kind_; }
   size_t row_bytes() const { return row_bytes_; }
+  WordRowFormat format() const { return format_; }
+  size_t stored_row_bytes() const { return stored_bytes_; }
   int rebuild_count() const { return forest_ ? forest_->rebuild_count() : rebuilds_; }
   size_t size() const { return forest_ ? forest_->size() : rows_.size(); }
 
   bool Contains(WordId w) const { return forest_ ? forest_->Contains(w) : rows_.count(w) != 0; }
-  const uint8_t* Descriptor(WordId w) const {
+  const uint8_t* StoredRow(WordId w) const {
     if (forest_) return forest_->Row(w);
+    if (index_kind_ == IndexKind::kLinear) return &linear_rows_[rows_.at(w).slot * stored_bytes_];
     auto it = rows_.find(w);
     SLAM_CHECK(it != rows_.end());
     return it->second.descriptor.get();
   }
 
-  void Add(WordId word, const uint8_t* data) {
+  void Add(WordId word, const uint8_t* extracted) {
+    SLAM_THROW_IF_NOT(InputError, EncodeWordRow(format_, extracted, cols_, encoded_.data()))
+        << "DescriptorIndex: word " << word << " has a non-finite descriptor value";
+    AddStored(word, encoded_.data());
+  }
+
+  void AddStored(WordId word, const uint8_t* data) {
     SLAM_CHECK(word > 0 && !Contains(word));
     if (forest_) {
       forest_->Add(word, data);
       return;
     }
     Row row;
-    row.descriptor.reset(new uint8_t[row_bytes_]);
-    std::copy(data, data + row_bytes_, row.descriptor.get());
     if (index_kind_ == IndexKind::kLinear) {
       row.slot = linear_words_.size();
       linear_words_.push_back(word);
-      linear_rows_.insert(linear_rows_.end(), data, data + row_bytes_);
+      linear_rows_.insert(linear_rows_.end(), data, data + stored_bytes_);
     } else {
+      row.descriptor.reset(new uint8_t[stored_bytes_]);
+      std::copy(data, data + stored_bytes_, row.descriptor.get());
       row.flann_id = flann_to_word_.size();
       flann_to_word_.push_back(word);
       AddToFlann(FlannRow(row));
@@ -230,7 +242,8 @@ class DescriptorIndex::Backend {
   size_t MemoryBytes() const {
     if (forest_) return forest_->MemoryBytes();
     const size_t n = rows_.size() + graveyard_.size();
-    size_t bytes = n * (row_bytes_ + sizeof(Row) + 2 * sizeof(void*) + 16);  // + hash node, malloc
+    const size_t own_row = index_kind_ == IndexKind::kLinear ? 0 : stored_bytes_;  // linear: in linear_rows_
+    size_t bytes = n * (own_row + sizeof(Row) + 2 * sizeof(void*) + 16);  // + hash node, malloc
     bytes += flann_to_word_.capacity() * sizeof(WordId) + linear_rows_.capacity() +
              linear_words_.capacity() * sizeof(WordId);
     // FLANN: a row pointer and an id per row, plus the structure itself.
@@ -312,7 +325,7 @@ class DescriptorIndex::Backend {
     WordNeighbour best[kNeighbours];
     int count = 0;
     for (size_t s = 0; s < linear_words_.size(); ++s) {
-      const float d = DescriptorDistance(kind_, query, &linear_rows_[s * row_bytes_], cols_);
+      const float d = WordDistance(format_, query, &linear_rows_[s * stored_bytes_], cols_);
       const WordNeighbour cand{linear_words_[s], d};
       auto closer = [](const WordNeighbour& a, const WordNeighbour& b) {
         return a.distance < b.distance || (a.distance == b.distance && a.word < b.word);
@@ -331,12 +344,12 @@ class DescriptorIndex::Backend {
   void RemoveLinear(size_t slot) {
     const size_t last = linear_words_.size() - 1;
     if (slot != last) {
-      std::copy_n(&linear_rows_[last * row_bytes_], row_bytes_, &linear_rows_[slot * row_bytes_]);
+      std::copy_n(&linear_rows_[last * stored_bytes_], stored_bytes_, &linear_rows_[slot * stored_bytes_]);
       linear_words_[slot] = linear_words_[last];
       rows_.at(linear_words_[slot]).slot = slot;
     }
     linear_words_.pop_back();
-    linear_rows_.resize(last * row_bytes_);
+    linear_rows_.resize(last * stored_bytes_);
   }
 
   // The last word left: drop FLANN entirely; the next Add starts a new index.
@@ -352,7 +365,10 @@ class DescriptorIndex::Backend {
   DescriptorKind kind_;
   int cols_;
   IndexKind index_kind_;
-  size_t row_bytes_;
+  WordRowFormat format_;
+  size_t row_bytes_;     // extracted rows (queries)
+  size_t stored_bytes_;  // stored rows
+  std::vector<uint8_t> encoded_;  // scratch: one row being encoded
   std::unordered_map<WordId, Row> rows_;
   std::vector<Row> graveyard_;
   std::vector<WordId> flann_to_word_;  // FLANN id (insertion order) -> word, kNoWord once removed
@@ -375,11 +391,16 @@ DescriptorIndex::DescriptorIndex(const DescriptorIndexOptions& options, Descript
 DescriptorIndex::~DescriptorIndex() = default;
 
 size_t DescriptorIndex::row_bytes() const { return backend_->row_bytes(); }
+WordRowFormat DescriptorIndex::format() const { return backend_->format(); }
+size_t DescriptorIndex::stored_row_bytes() const { return backend_->stored_row_bytes(); }
 IndexKind DescriptorIndex::index_kind() const { return backend_->index_kind(); }
 void DescriptorIndex::Add(WordId word, const uint8_t* row) { backend_->Add(word, row); }
+void DescriptorIndex::AddStored(WordId word, const uint8_t* stored_row) {
+  backend_->AddStored(word, stored_row);
+}
 bool DescriptorIndex::Remove(WordId word) { return backend_->Remove(word); }
 bool DescriptorIndex::Contains(WordId word) const { return backend_->Contains(word); }
-const uint8_t* DescriptorIndex::Descriptor(WordId word) const { return backend_->Descriptor(word); }
+const uint8_t* DescriptorIndex::StoredRow(WordId word) const { return backend_->StoredRow(word); }
 void DescriptorIndex::SearchTwoNearest(const uint8_t* queries, int rows,
                                        std::vector<std::vector<WordNeighbour>>* out) const {
   backend_->Search(queries, rows, out);

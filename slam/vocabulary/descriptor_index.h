@@ -44,6 +44,10 @@ struct DescriptorIndexOptions {
   int hierarchical_trees = 4;       // hierarchical clustering trees
   int hierarchical_leaf_size = 100; // hierarchical clustering max leaf size, rows
   uint32_t seed = 42;             // seeds the KD-trees' random choices (and srand for FLANN)
+  // How float words are stored: as extracted, or 8-bit per element with a
+  // per-row offset and step (kdtree and linear kinds; a quarter of the
+  // bytes, distances against the quantized values). Binary words are exact.
+  DescriptorStorage float_storage = DescriptorStorage::kFloat32;
 
   void Check() const;
 };
@@ -65,17 +69,25 @@ class DescriptorIndex {
 
   DescriptorKind kind() const { return kind_; }
   int cols() const { return cols_; }
+  // Bytes of an extracted row (queries, Add).
   size_t row_bytes() const;
+  // The stored form of a word and its size.
+  WordRowFormat format() const;
+  size_t stored_row_bytes() const;
   IndexKind index_kind() const;
 
-  // Copies `row` (row_bytes() bytes) and indexes it under `word`, which must
-  // not be present. Rebuilds when the index has doubled since its last build.
+  // Stores `row` (an extracted row, row_bytes() bytes) in format() and
+  // indexes it under `word`, which must not be present. Rebuilds when the
+  // index has doubled since its last build. Throws InputError for a float
+  // row with a non-finite value when words are quantized.
   void Add(WordId word, const uint8_t* row);
+  // The same with a row already in the stored form (stored_row_bytes()).
+  void AddStored(WordId word, const uint8_t* stored_row);
   // Removes `word` from the searchable set. Returns false when absent.
   bool Remove(WordId word);
   bool Contains(WordId word) const;
-  // The stored descriptor of a present word.
-  const uint8_t* Descriptor(WordId word) const;
+  // The stored row of a present word (format(), stored_row_bytes() bytes).
+  const uint8_t* StoredRow(WordId word) const;
 
   // Up to two nearest live words of each query row (`queries`: rows x
   // row_bytes(), contiguous). out->size() == rows on return.

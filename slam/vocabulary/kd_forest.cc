@@ -41,21 +41,21 @@ void* AllocateHugePageAdvised(size_t bytes) {
   return p;
 }
 
-KdForest::KdForest(const KdForestOptions& options, DescriptorKind kind, int cols)
-    : options_(options), kind_(kind), cols_(cols),
-      dims_(kind == DescriptorKind::kFloat ? cols : cols * 8),
-      row_bytes_(kind == DescriptorKind::kFloat ? cols * sizeof(float) : cols),
+KdForest::KdForest(const KdForestOptions& options, WordRowFormat format, int cols)
+    : options_(options), format_(format), cols_(cols),
+      dims_(format == WordRowFormat::kBinary ? cols * 8 : cols),
+      row_bytes_(WordRowBytes(format, cols)),
       rng_(options.seed) {
   SLAM_CHECK(options.trees >= 1 && options.checks >= 1 && options.leaf_size >= 1);
   SLAM_CHECK(options.rebuild_factor > 1.0 && cols > 0);
 }
 
 float KdForest::QueryValue(const uint8_t* q, int dim) const {
-  if (kind_ == DescriptorKind::kFloat) return reinterpret_cast<const float*>(q)[dim];
+  if (format_ != WordRowFormat::kBinary) return reinterpret_cast<const float*>(q)[dim];
   return static_cast<float>((q[dim >> 3] >> (dim & 7)) & 1);
 }
 
-float KdForest::Value(uint32_t p, int dim) const { return QueryValue(Data(p), dim); }
+float KdForest::Value(uint32_t p, int dim) const { return WordRowValue(format_, Data(p), dim); }
 
 const uint8_t* KdForest::Row(WordId id) const {
   const uint32_t p = slot_.Find(id);
@@ -327,7 +327,7 @@ int32_t KdForest::Step(int32_t n, const uint8_t* q, float mindist,
   const Node& node = nodes_[n];
   const float diff = QueryValue(q, node.dim) - node.split;
   const int near = diff < 0 ? 0 : 1;
-  const float far = mindist + (kind_ == DescriptorKind::kFloat ? diff * diff : std::abs(diff));
+  const float far = mindist + (format_ != WordRowFormat::kBinary ? diff * diff : std::abs(diff));
   heap->push_back({far, node.child[1 - near]});
   std::push_heap(heap->begin(), heap->end(), std::greater<>());
   return node.child[near];
@@ -351,16 +351,16 @@ void KdForest::CheckLeaf(int32_t n, const uint8_t* q, int* checks, KdNeighbour b
     ++*checks;
     const uint8_t* row = Data(entry.point);
     if (*found < 2) {
-      best[(*found)++] = {entry.id, DescriptorDistance(kind_, q, row, cols_)};
+      best[(*found)++] = {entry.id, WordDistance(format_, q, row, cols_)};
       if (*found == 2 && Closer(best[1], best[0])) std::swap(best[0], best[1]);
       continue;
     }
     // Only a row at most as far as the second best can change the result;
     // the bounded distance is exact below the bound and >= it otherwise.
     const float bound = best[1].distance;
-    float d = DescriptorDistanceBounded(kind_, q, row, cols_, bound);
+    float d = WordDistanceBounded(format_, q, row, cols_, bound);
     if (d > bound) continue;
-    if (d == bound) d = DescriptorDistance(kind_, q, row, cols_);  // a tie decides by id
+    if (d == bound) d = WordDistance(format_, q, row, cols_);  // a tie decides by id
     const KdNeighbour c{entry.id, d};
     if (Closer(c, best[1])) {
       best[1] = c;

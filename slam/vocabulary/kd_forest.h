@@ -5,7 +5,9 @@
 // different trees on every run (measured: two identical vocabularies diverge
 // after a few frames). Every random choice here comes from a seeded Rng.
 //
-// Float rows are compared with squared L2. Binary rows are treated as bit
+// Float rows are compared with squared L2, stored as floats or quantized to
+// 8 bits (WordRowFormat::kQuantized8: queries stay floats, splits and
+// distances use the quantized values). Binary rows are treated as bit
 // vectors (one dimension per bit, as the reference's byte-to-bits expansion)
 // and compared with Hamming distance directly on the packed bytes.
 #pragma once
@@ -61,15 +63,17 @@ struct KdNeighbour {
 
 class KdForest {
  public:
-  // `cols`: floats (float kind) or bytes (binary kind) per row.
-  KdForest(const KdForestOptions& options, DescriptorKind kind, int cols);
+  // `cols`: elements (floats or bytes) per extracted row.
+  KdForest(const KdForestOptions& options, WordRowFormat format, int cols);
 
+  // `row`: WordRowBytes(format, cols) bytes in the stored format.
   void Add(WordId id, const uint8_t* row);  // id must be new
   bool Remove(WordId id);                   // false when absent
   bool Contains(WordId id) const { return slot_.Contains(id); }
-  // Valid until the next Add or Rebuild.
+  // The stored row; valid until the next Add or Rebuild.
   const uint8_t* Row(WordId id) const;
-  // Up to 2 nearest live rows, nearest first.
+  WordRowFormat format() const { return format_; }
+  // Up to 2 nearest live rows of an extracted query row, nearest first.
   void SearchTwo(const uint8_t* query, std::vector<KdNeighbour>* out) const;
   // Drops removed rows and builds every tree again.
   void Rebuild();
@@ -122,7 +126,7 @@ class KdForest {
   const uint8_t* Data(uint32_t p) const { return &data_[static_cast<size_t>(p) * row_bytes_]; }
 
   KdForestOptions options_;
-  DescriptorKind kind_;
+  WordRowFormat format_;
   int cols_;
   int dims_;
   size_t row_bytes_;

@@ -177,11 +177,6 @@ bool Vocabulary::ContainsWord(WordId word) const {
   return index_ != nullptr && index_->Contains(word);
 }
 
-const uint8_t* Vocabulary::WordDescriptor(WordId word) const {
-  SLAM_THROW_IF_NOT(InputError, ContainsWord(word)) << "Vocabulary: no word " << word;
-  return index_->Descriptor(word);
-}
-
 size_t Vocabulary::num_words() const { return index_ == nullptr ? 0 : index_->size(); }
 int Vocabulary::index_rebuilds() const { return index_ == nullptr ? 0 : index_->rebuild_count(); }
 

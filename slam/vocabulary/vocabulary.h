@@ -75,7 +75,6 @@ class Vocabulary {
 
   const InvertedIndex& inverted_index() const { return inverted_; }
   bool ContainsWord(WordId word) const;
-  const uint8_t* WordDescriptor(WordId word) const;
   size_t num_words() const;
   size_t num_nodes() const { return inverted_.num_nodes(); }
   int index_rebuilds() const;

@@ -7,8 +7,15 @@
 
 namespace duskmap {
 
+int VocabularySnapshot::DescriptorCols() const {
+  if (descriptors.empty()) return 0;
+  return format() == WordRowFormat::kQuantized8
+             ? descriptors.cols - static_cast<int>(WordRowBytes(WordRowFormat::kQuantized8, 0))
+             : descriptors.cols;
+}
+
 bool VocabularySnapshot::operator==(const VocabularySnapshot& other) const {
-  if (kind != other.kind || word_ids != other.word_ids || next_word_id != other.next_word_id ||
+  if (kind != other.kind || format() != other.format() || word_ids != other.word_ids || next_word_id != other.next_word_id ||
       descriptors.rows != other.descriptors.rows || nodes.size() != other.nodes.size()) {
     return false;
   }
@@ -28,7 +35,12 @@ bool VocabularySnapshot::operator==(const VocabularySnapshot& other) const {
 VocabularySnapshot Vocabulary::Export() const {
   VocabularySnapshot s;
   s.next_word_id = next_word_id_;
-  if (index_ != nullptr) s.kind = index_->kind();
+  s.float_storage = options_.index.float_storage;
+  if (index_ != nullptr) {
+    s.kind = index_->kind();
+    s.float_storage = index_->format() == WordRowFormat::kQuantized8 ? DescriptorStorage::kUint8
+                                                                     : DescriptorStorage::kFloat32;
+  }
   for (NodeId node : inverted_.Nodes()) {
     VocabularyNodeWords n;
     n.node = node;
@@ -44,11 +56,13 @@ VocabularySnapshot Vocabulary::Export() const {
   std::sort(s.word_ids.begin(), s.word_ids.end());
   s.word_ids.erase(std::unique(s.word_ids.begin(), s.word_ids.end()), s.word_ids.end());
   if (!s.word_ids.empty()) {
-    const int type = index_->kind() == DescriptorKind::kFloat ? CV_32F : CV_8U;
-    s.descriptors.create(static_cast<int>(s.word_ids.size()), index_->cols(), type);
+    const bool floats = index_->format() == WordRowFormat::kFloat32;
+    const int width = floats ? index_->cols() : static_cast<int>(index_->stored_row_bytes());
+    s.descriptors.create(static_cast<int>(s.word_ids.size()), width, floats ? CV_32F : CV_8U);
     for (size_t i = 0; i < s.word_ids.size(); ++i) {
-      const uint8_t* row = index_->Descriptor(s.word_ids[i]);
-      std::copy(row, row + index_->row_bytes(), s.descriptors.ptr<uint8_t>(static_cast<int>(i)));
+      const uint8_t* row = index_->StoredRow(s.word_ids[i]);
+      std::copy(row, row + index_->stored_row_bytes(),
+                s.descriptors.ptr<uint8_t>(static_cast<int>(i)));
     }
   }
   return s;
@@ -58,14 +72,21 @@ void Vocabulary::Import(const VocabularySnapshot& s) {
   SLAM_THROW_IF_NOT(InputError, num_nodes() == 0 && num_words() == 0 && next_word_id_ == 1)
       << "Vocabulary::Import: the vocabulary is not empty (" << num_nodes() << " nodes, "
       << num_words() << " words)";
-  const int expected_type = s.kind == DescriptorKind::kFloat ? CV_32F : CV_8U;
+  const WordRowFormat format = s.format();
+  const int expected_type = format == WordRowFormat::kFloat32 ? CV_32F : CV_8U;
   SLAM_THROW_IF_NOT(InputError, s.descriptors.rows == static_cast<int>(s.word_ids.size()))
       << "vocabulary snapshot: " << s.descriptors.rows << " descriptor rows for "
       << s.word_ids.size() << " words";
   SLAM_THROW_IF_NOT(InputError, s.word_ids.empty() || s.descriptors.type() == expected_type)
       << "vocabulary snapshot: descriptors of type " << s.descriptors.type()
       << " do not match their kind ("
-      << (s.kind == DescriptorKind::kFloat ? "float, CV_32F" : "binary, CV_8U") << ")";
+      << (format == WordRowFormat::kFloat32
+              ? "float, CV_32F"
+              : format == WordRowFormat::kQuantized8 ? "quantized float, CV_8U" : "binary, CV_8U")
+      << ")";
+  SLAM_THROW_IF_NOT(InputError, s.word_ids.empty() || s.DescriptorCols() > 0)
+      << "vocabulary snapshot: stored rows of " << s.descriptors.cols
+      << " bytes are too short for quantized words (8 bytes of scale, then the codes)";
   for (size_t i = 0; i < s.word_ids.size(); ++i) {
     SLAM_THROW_IF_NOT(InputError, s.word_ids[i] > 0 && (i == 0 || s.word_ids[i] > s.word_ids[i - 1]))
         << "vocabulary snapshot: word ids must be positive and strictly increasing (word "
@@ -100,11 +121,15 @@ void Vocabulary::Import(const VocabularySnapshot& s) {
       << " words are referenced by no node";
 
   if (!s.word_ids.empty()) {
-    index_ = std::make_unique<DescriptorIndex>(options_.index, s.kind, s.descriptors.cols);
+    // The words are kept as the snapshot stores them, whatever this
+    // vocabulary's options say (a map decides how its words are stored).
+    DescriptorIndexOptions index_options = options_.index;
+    index_options.float_storage = s.float_storage;
+    index_ = std::make_unique<DescriptorIndex>(index_options, s.kind, s.DescriptorCols());
     index_->ReserveIds(s.word_ids.back());
     const cv::Mat rows = s.descriptors.isContinuous() ? s.descriptors : s.descriptors.clone();
     for (size_t i = 0; i < s.word_ids.size(); ++i) {
-      index_->Add(s.word_ids[i], rows.ptr<uint8_t>(static_cast<int>(i)));
+      index_->AddStored(s.word_ids[i], rows.ptr<uint8_t>(static_cast<int>(i)));
     }
     index_->Rebuild();
     // An imported vocabulary is searched far more than it grows (not at all

@@ -25,10 +25,20 @@ struct VocabularyNodeWords {
 
 struct VocabularySnapshot {
   DescriptorKind kind = DescriptorKind::kFloat;
+  // How float words are stored (word_types.h, WordRowFormat); binary words
+  // are exact whatever this says.
+  DescriptorStorage float_storage = DescriptorStorage::kFloat32;
   std::vector<WordId> word_ids;  // strictly increasing, > 0
-  cv::Mat descriptors;           // row i: the descriptor of word_ids[i] (CV_32F or CV_8U)
+  // Row i: the stored row of word_ids[i]: CV_32F x cols (float32), CV_8U x
+  // (8 + cols) (quantized: offset and step, then the codes) or CV_8U x cols
+  // (binary).
+  cv::Mat descriptors;
   WordId next_word_id = 1;       // > every word id: ids are never reused
   std::vector<VocabularyNodeWords> nodes;  // increasing node ids
+
+  WordRowFormat format() const { return WordRowFormatFor(kind, float_storage); }
+  // Elements of an extracted descriptor (0 without words).
+  int DescriptorCols() const;
 
   bool operator==(const VocabularySnapshot& other) const;
 };

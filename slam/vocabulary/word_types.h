@@ -1,8 +1,10 @@
 // Identifiers of visual words and the distance used to compare descriptors.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
+#include "slam/features/descriptor_quantization.h"
 #include "slam/features/frame_features.h"
 
 namespace duskmap {
@@ -21,5 +23,38 @@ float DescriptorDistance(DescriptorKind kind, const uint8_t* a, const uint8_t* b
 // distance is known to reach it (the exact distance when it is below).
 float DescriptorDistanceBounded(DescriptorKind kind, const uint8_t* a, const uint8_t* b, int cols,
                                 float bound);
+
+// How the vocabulary stores a word's descriptor. Queries are always rows as
+// extracted (floats or bytes); only the stored side changes.
+enum class WordRowFormat {
+  kFloat32,     // `cols` floats, as extracted
+  kQuantized8,  // a RowScale (offset, step: 8 bytes), then `cols` 8-bit codes
+                // (features/descriptor_quantization.h): a quarter of the bytes
+  kBinary,      // `cols` bytes, as extracted
+};
+
+WordRowFormat WordRowFormatFor(DescriptorKind kind, DescriptorStorage float_storage);
+size_t WordRowBytes(WordRowFormat format, int cols);
+// Bytes of one extracted (query) row: 4 x cols for float formats.
+size_t QueryRowBytes(WordRowFormat format, int cols);
+// Extracted row -> stored row. False (stored row unspecified) when a float
+// row to quantize holds a non-finite value.
+bool EncodeWordRow(WordRowFormat format, const uint8_t* descriptor, int cols, uint8_t* stored);
+// Stored row -> extracted form (the quantized values for kQuantized8).
+void DecodeWordRow(WordRowFormat format, const uint8_t* stored, int cols, uint8_t* descriptor);
+// Element `dim` of a stored row as a float (one bit for kBinary).
+float WordRowValue(WordRowFormat format, const uint8_t* stored, int dim);
+// Distance between an extracted query row and a stored word row, as
+// DescriptorDistance(Bounded) computes it between two extracted rows (for
+// kQuantized8, against the quantized values).
+float WordDistance(WordRowFormat format, const uint8_t* query, const uint8_t* stored, int cols);
+float WordDistanceBounded(WordRowFormat format, const uint8_t* query, const uint8_t* stored,
+                          int cols, float bound);
+
+namespace detail {
+// WordDistance of a kQuantized8 row computed with the SSE2 code path, which
+// machines without AVX2 run (for the test that both paths agree bit for bit).
+float QuantizedWordDistanceBaselineSimd(const uint8_t* query, const uint8_t* stored, int cols);
+}  // namespace detail
 
 }  // namespace duskmap

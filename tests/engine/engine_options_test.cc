@@ -11,7 +11,7 @@ TEST(ReadEngineOptions, ReadsNestedValues) {
   const auto json = nlohmann::json::parse(R"({
     "features": {"type": "sift", "vocabulary_features": 300},
     "registration": {"min_inliers": 15},
-    "loop_closure": {"loop_threshold": 0.2},
+    "loop_closure": {"loop_threshold": 0.2, "word_storage": "float32"},
     "proximity": {"local_radius_m": 2.0},
     "mapping": {"reduce_graph": true},
     "localization": {"proximity_max_paths": 2},
@@ -23,6 +23,7 @@ TEST(ReadEngineOptions, ReadsNestedValues) {
   EXPECT_TRUE(o.mapping.reduce_graph);
   EXPECT_EQ(o.LoopClosure().vocabulary.max_features_per_node, 300);
   EXPECT_DOUBLE_EQ(o.LoopClosure().loop_threshold, 0.2);
+  EXPECT_EQ(o.LoopClosure().vocabulary.index.float_storage, DescriptorStorage::kFloat32);
   EXPECT_EQ(o.LocalizationProximity().max_paths, 2);
   EXPECT_EQ(o.MappingProximity().max_paths, 3);
   EXPECT_DOUBLE_EQ(o.MappingProximity().local_radius_m, 2.0);
@@ -37,6 +38,9 @@ TEST(EngineOptions, DefaultsAreThePapersSettings) {
   EXPECT_EQ(EngineOptionsToJson(EngineOptions()).dump(2), EngineOptionsToJson(paper).dump(2));
   EXPECT_DOUBLE_EQ(EngineOptions().optimizer.max_error_ratio, 0.0);
   EXPECT_DOUBLE_EQ(EngineOptions().loop_closure.vocabulary.bad_signature_ratio, 0.2);
+  EXPECT_EQ(EngineOptions().loop_closure.vocabulary.index.float_storage, DescriptorStorage::kUint8);
+  JsonFields bad(nlohmann::json::parse(R"({"loop_closure": {"word_storage": "int4"}})"), "engine.json");
+  EXPECT_THROW(ReadEngineOptions(bad), ConfigError);
 }
 
 TEST(ReadEngineOptions, RejectsUnknownKeysWithPath) {

@@ -193,7 +193,8 @@ TEST_F(EngineSessions, StoredMapLocalizesIdenticallyAndStaysUnchanged) {
   const LocalizationRun words_apart =
       LocalizeSession(without_words, LoadMapWords(before, apart), *reader, TestOptions());
   const size_t stored_words_bytes =
-      map.words().ids.size() * sizeof(WordId) + map.words().descriptors.total() * sizeof(float);
+      map.words().ids.size() * sizeof(WordId) +
+      map.words().descriptors.total() * map.words().descriptors.elemSize();
   EXPECT_EQ(words_apart.memory.words_index_bytes + stored_words_bytes,
             from_file.memory.words_index_bytes);
   for (const LocalizationRun* other : {&from_file, &words_apart}) {

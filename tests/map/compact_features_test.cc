@@ -98,6 +98,9 @@ TEST(CompactFeatures, BadInputThrows) {
   f = SurfLikeFeatures(5);
   f.descriptors = f.descriptors.rowRange(0, 4).clone();
   EXPECT_THROW(CompactFeatures::Encode(f, DescriptorStorage::kFloat32), InputError);
+  f = SurfLikeFeatures(5);
+  f.descriptors.at<float>(3, 17) = std::nanf("");  // not the row's first value
+  EXPECT_THROW(CompactFeatures::Encode(f, DescriptorStorage::kUint8), InputError);
   EXPECT_THROW(CompactFeatures::FromParts(DescriptorKind::kFloat, DescriptorStorage::kUint8, CV_32F,
                                           cv::Mat(2, 64, CV_8U), {0.f}, {0.f},
                                           std::vector<PackedKeypoint>(2),

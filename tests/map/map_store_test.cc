@@ -209,13 +209,13 @@ TEST_F(MapStoreTest, UnknownSchemaVersionIsRejected) {
 // counts (schema 2) or compact node features (schema 1) gives a clear error.
 TEST_F(MapStoreTest, OldSchemaVersionAsksForARebuild) {
   SaveMap(testing::MakeTestMap(2), path_);
-  Tamper("UPDATE meta SET value = '3' WHERE key = 'schema_version'");
-  ExpectLoadError("schema version 3 is not supported (this build reads 4; the map was written "
+  Tamper("UPDATE meta SET value = '4' WHERE key = 'schema_version'");
+  ExpectLoadError("schema version 4 is not supported (this build reads 5; the map was written "
                   "by an older duskmap, rebuild it)");
-  Tamper("UPDATE meta SET value = '2' WHERE key = 'schema_version'");
-  ExpectLoadError("schema version 2 is not supported (this build reads 4;");
-  Tamper("UPDATE meta SET value = '1' WHERE key = 'schema_version'");
-  ExpectLoadError("schema version 1 is not supported (this build reads 4;");
+  for (const char* version : {"3", "2", "1"}) {
+    Tamper(std::string("UPDATE meta SET value = '") + version + "' WHERE key = 'schema_version'");
+    ExpectLoadError(std::string("schema version ") + version + " is not supported (this build reads 5;");
+  }
 }
 
 TEST_F(MapStoreTest, WordsLoadApart) {
@@ -271,6 +271,9 @@ TEST_F(MapStoreTest, QuantizedDescriptorsRoundTrip) {
   SaveMap(map, path_);
   Tamper("UPDATE meta SET value = 'float64' WHERE key = 'descriptor_storage'");
   ExpectLoadError("unknown descriptor storage 'float64'");
+  SaveMap(map, path_);
+  Tamper("UPDATE meta SET value = 'int4' WHERE key = 'word_storage'");
+  ExpectLoadError("unknown word storage 'int4'");
 }
 
 TEST_F(MapStoreTest, TruncatedFileIsRejected) {

@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include <gtest/gtest.h>
+#include <sqlite3.h>
 
 #include "slam/core/check.h"
 #include "slam/map/map_store.h"
@@ -23,14 +24,17 @@ struct Fixture {
   VocabularySnapshot exported;
 };
 
-Fixture MakeFixture() {
+Fixture MakeFixture(DescriptorStorage word_storage = DescriptorStorage::kFloat32) {
   Fixture f;
   f.map = testing::MakeTestMap(3, 400, false);
+  f.map.mutable_metadata().word_storage = word_storage;
   SyntheticDescriptorOptions o;
   o.kind = DescriptorKind::kFloat;
   o.cols = 64;
   const SyntheticDescriptors gen(o);
-  Vocabulary vocabulary{VocabularyOptions()};
+  VocabularyOptions options;
+  options.index.float_storage = word_storage;
+  Vocabulary vocabulary(options);
   for (NodeId n = 1; n <= 5; ++n) {
     std::vector<int64_t> ids(400);
     std::iota(ids.begin(), ids.end(), 50 * n);
@@ -66,6 +70,37 @@ TEST(MapVocabulary, SurvivesSaveAndLoad) {
   const Map loaded = LoadMap(path);
   std::remove(path.c_str());
   EXPECT_TRUE(MapVocabularySnapshot(loaded) == f.exported);
+}
+
+// Quantized words are stored as the vocabulary keeps them (offset, step,
+// codes): save and load give back the same snapshot, the store checks the
+// row width against the recorded storage, and a map that records float
+// words refuses quantized ones.
+TEST(MapVocabulary, QuantizedWordsSurviveSaveAndLoad) {
+  Fixture f = MakeFixture(DescriptorStorage::kUint8);
+  SetMapVocabulary(f.exported, &f.map);
+  EXPECT_EQ(f.map.words().descriptors.cols, 64 + 8);
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "duskmap_map_vocabulary_quantized.db").string();
+  SaveMap(f.map, path);
+  const Map loaded = LoadMap(path);
+  EXPECT_EQ(loaded.metadata().word_storage, DescriptorStorage::kUint8);
+  EXPECT_TRUE(MapVocabularySnapshot(loaded) == f.exported);
+  Vocabulary restored{VocabularyOptions()};
+  restored.Import(MapVocabularySnapshot(loaded));
+  EXPECT_TRUE(restored.Export() == f.exported);
+  {  // the recorded storage says float32: the stored rows have the wrong width
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+    ASSERT_EQ(sqlite3_exec(db, "UPDATE meta SET value = 'float32' WHERE key = 'word_storage'",
+                           nullptr, nullptr, nullptr),
+              SQLITE_OK);
+    sqlite3_close(db);
+    EXPECT_THROW(LoadMap(path), InputError);
+  }
+  std::remove(path.c_str());
+  Fixture float_map = MakeFixture();
+  EXPECT_THROW(SetMapVocabulary(f.exported, &float_map.map), InputError);
 }
 
 TEST(MapVocabulary, ASnapshotNamingAMissingNodeIsAnError) {

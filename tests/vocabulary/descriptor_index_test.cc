@@ -193,5 +193,95 @@ TEST(DescriptorDistance, BoundedIsExactBelowTheBoundAndAtLeastItAbove) {
   }
 }
 
+// Quantized words: encode/decode within half a step per element, the
+// distance equals the float distance to the decoded row (bit for bit: the
+// same additions in the same order), the bounded form is exact below its
+// bound, and a non-finite row is refused.
+TEST(WordRows, QuantizedRowsDecodeWithinHalfAStepAndMeasureTheDecodedRow) {
+  for (int cols : {64, 100, 200}) {
+    SCOPED_TRACE(cols);
+    SyntheticDescriptorOptions o;
+    o.kind = DescriptorKind::kFloat;
+    o.cols = cols;
+    const cv::Mat rows = SyntheticDescriptors(o).Random(40, 3);
+    const WordRowFormat format = WordRowFormat::kQuantized8;
+    ASSERT_EQ(WordRowBytes(format, cols), static_cast<size_t>(8 + cols));
+    std::vector<uint8_t> stored(WordRowBytes(format, cols));
+    cv::Mat decoded(1, cols, CV_32F);
+    for (int i = 0; i + 1 < rows.rows; ++i) {
+      ASSERT_TRUE(EncodeWordRow(format, rows.ptr<uint8_t>(i), cols, stored.data()));
+      DecodeWordRow(format, stored.data(), cols, decoded.ptr<uint8_t>(0));
+      double lo, hi;
+      cv::minMaxLoc(rows.row(i), &lo, &hi);
+      const double half_step = (hi - lo) / 255.0 / 2.0;
+      EXPECT_LE(cv::norm(rows.row(i), decoded, cv::NORM_INF), half_step * 1.001 + 1e-9);
+      EXPECT_EQ(WordRowValue(format, stored.data(), cols / 2), decoded.at<float>(0, cols / 2));
+      const uint8_t* query = rows.ptr<uint8_t>(i + 1);
+      const float exact =
+          DescriptorDistance(DescriptorKind::kFloat, query, decoded.ptr<uint8_t>(0), cols);
+      EXPECT_EQ(WordDistance(format, query, stored.data(), cols), exact);
+      EXPECT_EQ(detail::QuantizedWordDistanceBaselineSimd(query, stored.data(), cols), exact);
+      EXPECT_EQ(WordDistanceBounded(format, query, stored.data(), cols, exact * 1.0001f), exact);
+      EXPECT_GE(WordDistanceBounded(format, query, stored.data(), cols, exact * 0.3f), exact * 0.3f);
+    }
+  }
+  std::vector<float> bad(64, 0.5f);
+  bad[7] = std::numeric_limits<float>::quiet_NaN();
+  std::vector<uint8_t> stored(WordRowBytes(WordRowFormat::kQuantized8, 64));
+  EXPECT_FALSE(EncodeWordRow(WordRowFormat::kQuantized8, reinterpret_cast<const uint8_t*>(bad.data()),
+                             64, stored.data()));
+  DescriptorIndexOptions options;
+  options.float_storage = DescriptorStorage::kUint8;
+  DescriptorIndex index(options, DescriptorKind::kFloat, 64);
+  EXPECT_THROW(index.Add(1, reinterpret_cast<const uint8_t*>(bad.data())), InputError);
+}
+
+// With quantized float words the KD-forest (exhaustive checks) and the
+// linear scan agree exactly, a word is found again from its own extracted
+// row, and the index holds about a quarter of the float index's bytes.
+TEST(DescriptorIndex, QuantizedWordsSearchLikeTheLinearScanInAQuarterOfTheBytes) {
+  const SyntheticDescriptors gen = Generator(DescriptorKind::kFloat);
+  const cv::Mat words = gen.Random(2000, 21);
+  DescriptorIndexOptions options;
+  options.float_storage = DescriptorStorage::kUint8;
+  options.checks = 100000;
+  DescriptorIndex forest(options, DescriptorKind::kFloat, words.cols);
+  options.float_kind = IndexKind::kLinear;
+  DescriptorIndex linear(options, DescriptorKind::kFloat, words.cols);
+  DescriptorIndex exact(DescriptorIndexOptions(), DescriptorKind::kFloat, words.cols);
+  ASSERT_EQ(forest.format(), WordRowFormat::kQuantized8);
+  ASSERT_EQ(forest.stored_row_bytes(), 8u + 128u);
+  ASSERT_EQ(forest.row_bytes(), 4u * 128u);
+  for (int i = 0; i < words.rows; ++i) {
+    forest.Add(i + 1, words.ptr<uint8_t>(i));
+    linear.Add(i + 1, words.ptr<uint8_t>(i));
+    exact.Add(i + 1, words.ptr<uint8_t>(i));
+  }
+  for (int i = 0; i < 200; ++i) forest.Remove(5 * i + 3), linear.Remove(5 * i + 3);
+  const cv::Mat queries = gen.Random(200, 22);
+  const auto a = Search(forest, queries);
+  const auto b = Search(linear, queries);
+  for (size_t q = 0; q < a.size(); ++q) {
+    ASSERT_EQ(a[q].size(), 2u);
+    ASSERT_EQ(b[q].size(), 2u);
+    for (int k = 0; k < 2; ++k) {
+      EXPECT_EQ(a[q][k].word, b[q][k].word) << "query " << q;
+      EXPECT_EQ(a[q][k].distance, b[q][k].distance) << "query " << q;
+    }
+  }
+  const auto self = Search(forest, words.rowRange(0, 300));
+  for (int i = 0; i < 300; ++i) {
+    if (i % 5 == 2) continue;  // removed (word 5k + 3)
+    ASSERT_FALSE(self[i].empty());
+    EXPECT_EQ(self[i][0].word, i + 1);
+  }
+  DescriptorIndexOptions float_options;
+  float_options.checks = 100000;
+  DescriptorIndex float_forest(float_options, DescriptorKind::kFloat, words.cols);
+  for (int i = 0; i < words.rows; ++i) float_forest.Add(i + 1, words.ptr<uint8_t>(i));
+  for (int i = 0; i < 200; ++i) float_forest.Remove(5 * i + 3);
+  EXPECT_LT(forest.MemoryBytes(), float_forest.MemoryBytes() / 2);
+}
+
 }  // namespace
 }  // namespace duskmap

@@ -78,6 +78,47 @@ TEST(VocabularySnapshot, ExportImportRestoresWordsReferencesAndIds) {
   }
 }
 
+// Quantized float words: the snapshot carries the stored rows (offset, step
+// and codes), so an import restores the very same words, whatever the
+// importing vocabulary's own word storage says; lookups and new words
+// continue exactly as in the exporting vocabulary.
+TEST(VocabularySnapshot, QuantizedWordsRoundTripExactly) {
+  const SyntheticDescriptors gen = Generator(DescriptorKind::kFloat);
+  VocabularyOptions options;
+  options.index.checks = 1000000;
+  options.index.float_storage = DescriptorStorage::kUint8;
+  Vocabulary original(options);
+  Fill(&original, gen, DescriptorKind::kFloat);
+  const VocabularySnapshot snapshot = original.Export();
+  EXPECT_EQ(snapshot.float_storage, DescriptorStorage::kUint8);
+  EXPECT_EQ(snapshot.descriptors.type(), CV_8U);
+  EXPECT_EQ(snapshot.DescriptorCols(), 128);
+  EXPECT_EQ(snapshot.descriptors.cols, 128 + 8);
+  VocabularyOptions float_options = options;
+  float_options.index.float_storage = DescriptorStorage::kFloat32;
+  Vocabulary restored(float_options);
+  restored.Import(snapshot);
+  EXPECT_TRUE(restored.Export() == snapshot);
+  const cv::Mat frame = RouteFrame(gen, 5, 77);
+  EXPECT_EQ(restored.Quantize(frame, DescriptorKind::kFloat).words,
+            original.Quantize(frame, DescriptorKind::kFloat).words);
+  EXPECT_EQ(restored.AddNode(30, frame, DescriptorKind::kFloat).words,
+            original.AddNode(30, frame, DescriptorKind::kFloat).words);
+  EXPECT_TRUE(restored.Export() == original.Export());
+  // The same frames with float words: the same word count within a few
+  // percent (quantization moves few nearest-neighbour decisions), in more bytes.
+  Vocabulary exact(float_options);
+  Fill(&exact, gen, DescriptorKind::kFloat);
+  const double words_ratio = static_cast<double>(original.num_words()) / exact.num_words();
+  EXPECT_NEAR(words_ratio, 1.0, 0.05);
+  EXPECT_LT(original.MemoryBytes(), exact.MemoryBytes());
+  // Stored rows too short for a scale and codes are refused.
+  VocabularySnapshot bad = snapshot;
+  bad.descriptors = cv::Mat(bad.descriptors.rows, 8, CV_8U, cv::Scalar(0));
+  Vocabulary target(options);
+  EXPECT_THROW(target.Import(bad), InputError);
+}
+
 TEST(VocabularySnapshot, EmptyVocabularyRoundTrips) {
   Vocabulary empty{VocabularyOptions()};
   const VocabularySnapshot s = empty.Export();
