@@ -18,6 +18,16 @@ int AddLamp(Scene& scene, const std::string& name, const Eigen::Vector3d& p, int
   return static_cast<int>(scene.lamps.size()) - 1;
 }
 
+// A ceiling light on in every session: the lamp 0.25 m below the ceiling
+// above `xy`, in a glowing 0.3 m fixture (`cd` before lamp_intensity_scale).
+void AddCeilingLight(SceneBuilder& b, const std::string& name, const Eigen::Vector2d& xy, int room,
+                     double cd, const ApartmentOptions& options) {
+  const double z = options.wall_height_m - 0.25;
+  const int lamp = AddLamp(b.scene(), name, {xy.x(), xy.y(), z}, room, cd * options.lamp_intensity_scale, "");
+  b.AddBox({xy.x() - 0.15, xy.y() - 0.15, z + 0.05}, {xy.x() + 0.15, xy.y() + 0.15, z + 0.2}, room,
+           TextureKind::kLampShade, {0.55f, 0.75f, 0.85f}, Emission::kLamp, lamp);
+}
+
 // A lamp shade glowing around lamp `lamp` (a box centred on its position).
 void AddShade(SceneBuilder& b, int lamp, const Eigen::Vector3d& half_size) {
   const Lamp& l = b.scene().lamps[static_cast<size_t>(lamp)];
@@ -95,11 +105,7 @@ void AddLivingRoom(SceneBuilder& b, const ApartmentOptions& options) {
   b.AddBox({5.58, 4.18, 0.0}, {5.62, 4.22, 1.45}, room, TextureKind::kWood, {0.05f, 0.05f, 0.05f});
   AddShade(b, floor_lamp, {0.15, 0.15, 0.15});
   if (options.living_ceiling_cd > 0.0) {
-    const double z = options.wall_height_m - 0.25;
-    const int lamp = AddLamp(s, "living ceiling", {3.0, 2.6, z}, room,
-                             options.living_ceiling_cd * options.lamp_intensity_scale, "");
-    b.AddBox({2.85, 2.45, z + 0.05}, {3.15, 2.75, z + 0.2}, room, TextureKind::kLampShade,
-             {0.55f, 0.75f, 0.85f}, Emission::kLamp, lamp);
+    AddCeilingLight(b, "living ceiling", {3.0, 2.6}, room, options.living_ceiling_cd, options);
   }
 }
 
@@ -246,11 +252,7 @@ void AddBedroom(SceneBuilder& b, const ApartmentOptions& options) {
   b.AddBox({4.62, 8.69, 0.55}, {4.68, 8.75, 0.62}, room, TextureKind::kPaint, {0.1f, 0.1f, 0.1f});
   AddShade(b, lamp, {0.1, 0.1, 0.12});
   if (options.bedroom_ceiling_cd > 0.0) {
-    const double z = options.wall_height_m - 0.25;
-    const int ceiling = AddLamp(s, "bedroom ceiling", {2.6, 7.0, z}, room,
-                                options.bedroom_ceiling_cd * options.lamp_intensity_scale, "");
-    b.AddBox({2.45, 6.85, z + 0.05}, {2.75, 7.15, z + 0.2}, room, TextureKind::kLampShade,
-             {0.55f, 0.75f, 0.85f}, Emission::kLamp, ceiling);
+    AddCeilingLight(b, "bedroom ceiling", {2.6, 7.0}, room, options.bedroom_ceiling_cd, options);
   }
   // Wardrobe, dresser with objects, bookshelf, rug, plant, laundry basket.
   b.AddBoxWithFront({4.9, 6.2, 0.0}, {5.5, 8.2, 2.1}, {-1, 0}, room, TextureKind::kWood,

@@ -102,12 +102,7 @@ class MapStoreTest : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
 
   // Runs an SQL statement on a saved map file (to forge bad inputs).
-  void Tamper(const std::string& sql) {
-    sqlite3* db = nullptr;
-    ASSERT_EQ(sqlite3_open(path_.c_str(), &db), SQLITE_OK);
-    ASSERT_EQ(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr), SQLITE_OK);
-    sqlite3_close(db);
-  }
+  void Tamper(const std::string& sql) { testing::ExecuteSql(path_, sql); }
 
   // Expects LoadMap to throw InputError whose message contains `needle`.
   void ExpectLoadError(const std::string& needle, const MapLoadOptions& options = {}) {

@@ -5,7 +5,6 @@
 #include <numeric>
 
 #include <gtest/gtest.h>
-#include <sqlite3.h>
 
 #include "slam/core/check.h"
 #include "slam/map/map_store.h"
@@ -89,15 +88,9 @@ TEST(MapVocabulary, QuantizedWordsSurviveSaveAndLoad) {
   Vocabulary restored{VocabularyOptions()};
   restored.Import(MapVocabularySnapshot(loaded));
   EXPECT_TRUE(restored.Export() == f.exported);
-  {  // the recorded storage says float32: the stored rows have the wrong width
-    sqlite3* db = nullptr;
-    ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
-    ASSERT_EQ(sqlite3_exec(db, "UPDATE meta SET value = 'float32' WHERE key = 'word_storage'",
-                           nullptr, nullptr, nullptr),
-              SQLITE_OK);
-    sqlite3_close(db);
-    EXPECT_THROW(LoadMap(path), InputError);
-  }
+  // The recorded storage says float32: the stored rows have the wrong width.
+  testing::ExecuteSql(path, "UPDATE meta SET value = 'float32' WHERE key = 'word_storage'");
+  EXPECT_THROW(LoadMap(path), InputError);
   std::remove(path.c_str());
   Fixture float_map = MakeFixture();
   EXPECT_THROW(SetMapVocabulary(f.exported, &float_map.map), InputError);

@@ -4,6 +4,9 @@
 #include <random>
 #include <string>
 
+#include <gtest/gtest.h>
+#include <sqlite3.h>
+
 #include "slam/core/random.h"
 #include "slam/map/map.h"
 
@@ -85,6 +88,15 @@ inline Map MakeTestMap(int nodes_per_session = 5, int num_features = 40, bool bi
   words.ids = {3, 4, 8, 100, 101, 250};
   map.SetWords(words);
   return map;
+}
+
+// Runs one SQL statement on a saved map file (to forge bad inputs).
+inline void ExecuteSql(const std::string& path, const std::string& sql) {
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK) << path;
+  const int rc = sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr);
+  sqlite3_close(db);
+  ASSERT_EQ(rc, SQLITE_OK) << sql;
 }
 
 }  // namespace duskmap::testing
