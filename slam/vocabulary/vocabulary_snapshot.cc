@@ -15,7 +15,8 @@ int VocabularySnapshot::DescriptorCols() const {
 }
 
 bool VocabularySnapshot::operator==(const VocabularySnapshot& other) const {
-  if (kind != other.kind || format() != other.format() || word_ids != other.word_ids || next_word_id != other.next_word_id ||
+  if (kind != other.kind || format() != other.format() || word_ids != other.word_ids ||
+      next_word_id != other.next_word_id ||
       descriptors.rows != other.descriptors.rows || nodes.size() != other.nodes.size()) {
     return false;
   }
