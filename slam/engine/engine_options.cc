@@ -1,5 +1,7 @@
 #include "slam/engine/engine_options.h"
 
+#include <optional>
+
 #include "slam/core/check.h"
 
 namespace duskmap {
@@ -81,6 +83,21 @@ ProximityOptions EngineOptions::LocalizationProximity() const {
   return o;
 }
 
+namespace {
+
+// A DescriptorStorage option ("float32" or "uint8") under `key`; `field`
+// names it in the error.
+void ReadStorage(JsonFields& fields, const char* key, const char* field, DescriptorStorage* out) {
+  std::string name = DescriptorStorageName(*out);
+  fields.Read(key, &name);
+  const std::optional<DescriptorStorage> storage = DescriptorStorageFromName(name);
+  SLAM_THROW_IF_NOT(ConfigError, storage.has_value())
+      << "EngineOptions." << field << ": must be \"float32\" or \"uint8\", got \"" << name << "\"";
+  *out = *storage;
+}
+
+}  // namespace
+
 EngineOptions ReadEngineOptions(JsonFields& fields) {
   EngineOptions o;
   JsonFields features = fields.Child("features");
@@ -99,12 +116,8 @@ EngineOptions ReadEngineOptions(JsonFields& fields) {
   lcd.Read("loop_threshold", &o.loop_closure.loop_threshold);
   lcd.Read("aggressive_loop_threshold", &o.loop_closure.aggressive_loop_threshold);
   lcd.Read("bad_signature_ratio", &o.loop_closure.vocabulary.bad_signature_ratio);
-  std::string word_storage = DescriptorStorageName(o.loop_closure.vocabulary.index.float_storage);
-  lcd.Read("word_storage", &word_storage);
-  SLAM_THROW_IF_NOT(ConfigError, word_storage == "float32" || word_storage == "uint8")
-      << "EngineOptions.loop_closure.word_storage: must be \"float32\" or \"uint8\", got \""
-      << word_storage << "\"";
-  o.loop_closure.vocabulary.index.float_storage = ParseDescriptorStorage(word_storage);
+  ReadStorage(lcd, "word_storage", "loop_closure.word_storage",
+              &o.loop_closure.vocabulary.index.float_storage);
   lcd.RejectUnknown();
   JsonFields proximity = fields.Child("proximity");
   proximity.Read("local_radius_m", &o.proximity.local_radius_m);
@@ -123,12 +136,8 @@ EngineOptions ReadEngineOptions(JsonFields& fields) {
   mapping.Read("proximity_max_paths", &o.mapping.proximity_max_paths);
   mapping.Read("reduce_graph", &o.mapping.reduce_graph);
   mapping.Read("short_term_memory", &o.mapping.short_term_memory);
-  std::string storage = DescriptorStorageName(o.mapping.descriptor_storage);
-  mapping.Read("descriptor_storage", &storage);
-  SLAM_THROW_IF_NOT(ConfigError, storage == "float32" || storage == "uint8")
-      << "EngineOptions.mapping.descriptor_storage: must be \"float32\" or \"uint8\", got \""
-      << storage << "\"";
-  o.mapping.descriptor_storage = ParseDescriptorStorage(storage);
+  ReadStorage(mapping, "descriptor_storage", "mapping.descriptor_storage",
+              &o.mapping.descriptor_storage);
   mapping.RejectUnknown();
   JsonFields localization = fields.Child("localization");
   localization.Read("proximity", &o.localization.proximity);

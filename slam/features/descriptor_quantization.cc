@@ -15,11 +15,18 @@ const char* DescriptorStorageName(DescriptorStorage storage) {
   return "unknown";
 }
 
+std::optional<DescriptorStorage> DescriptorStorageFromName(const std::string& name) {
+  for (DescriptorStorage s : {DescriptorStorage::kFloat32, DescriptorStorage::kUint8}) {
+    if (name == DescriptorStorageName(s)) return s;
+  }
+  return std::nullopt;
+}
+
 DescriptorStorage ParseDescriptorStorage(const std::string& name) {
-  if (name == "float32") return DescriptorStorage::kFloat32;
-  SLAM_THROW_IF_NOT(ConfigError, name == "uint8")
+  const std::optional<DescriptorStorage> storage = DescriptorStorageFromName(name);
+  SLAM_THROW_IF_NOT(ConfigError, storage.has_value())
       << "descriptor storage '" << name << "' is not one of float32, uint8";
-  return DescriptorStorage::kUint8;
+  return *storage;
 }
 
 bool QuantizeRow(const float* row, int cols, uint8_t* codes, RowScale* scale) {

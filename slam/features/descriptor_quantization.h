@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace duskmap {
@@ -15,7 +16,10 @@ enum class DescriptorStorage {
 };
 
 const char* DescriptorStorageName(DescriptorStorage storage);
-// Throws ConfigError for an unknown name ("float32", "uint8").
+// The storage named "float32" or "uint8"; nullopt for any other name (for
+// callers that report it with their own field or file).
+std::optional<DescriptorStorage> DescriptorStorageFromName(const std::string& name);
+// Throws ConfigError for an unknown name.
 DescriptorStorage ParseDescriptorStorage(const std::string& name);
 
 struct RowScale {

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <optional>
 
 #include "slam/core/check.h"
 #include "slam/map/map_codec.h"
@@ -209,6 +210,16 @@ int64_t MetaInt(const std::map<std::string, std::string>& meta, const std::strin
   return value;
 }
 
+// A DescriptorStorage entry of the meta table; `what` names it in the error.
+DescriptorStorage MetaStorage(const std::map<std::string, std::string>& meta, const std::string& key,
+                              const char* what, const std::string& path) {
+  const std::string& name = MetaValue(meta, key, path);
+  const std::optional<DescriptorStorage> storage = DescriptorStorageFromName(name);
+  SLAM_THROW_IF_NOT(InputError, storage.has_value())
+      << path << ": unknown " << what << " '" << name << "'";
+  return *storage;
+}
+
 MapMetadata ReadMetadata(const std::map<std::string, std::string>& meta, const std::string& path,
                          const MapLoadOptions& options) {
   const int64_t version = MetaInt(meta, "schema_version", path);
@@ -231,14 +242,8 @@ MapMetadata ReadMetadata(const std::map<std::string, std::string>& meta, const s
                           : DescriptorKind::kFloat;
   m.descriptor_cv_type = static_cast<int>(MetaInt(meta, "descriptor_cv_type", path));
   m.descriptor_cols = static_cast<int>(MetaInt(meta, "descriptor_cols", path));
-  const std::string& storage = MetaValue(meta, "descriptor_storage", path);
-  SLAM_THROW_IF_NOT(InputError, storage == "float32" || storage == "uint8")
-      << path << ": unknown descriptor storage '" << storage << "'";
-  m.descriptor_storage = ParseDescriptorStorage(storage);
-  const std::string& word_storage = MetaValue(meta, "word_storage", path);
-  SLAM_THROW_IF_NOT(InputError, word_storage == "float32" || word_storage == "uint8")
-      << path << ": unknown word storage '" << word_storage << "'";
-  m.word_storage = ParseDescriptorStorage(word_storage);
+  m.descriptor_storage = MetaStorage(meta, "descriptor_storage", "descriptor storage", path);
+  m.word_storage = MetaStorage(meta, "word_storage", "word storage", path);
   return m;
 }
 

@@ -20,7 +20,8 @@
 
 namespace duskmap {
 
-// 2: compact node features; 3: word counts, n_j, next word id; 4: 12-byte keypoints (no octave)
+// 2: compact node features; 3: word counts, n_j, next word id; 4: 12-byte keypoints (no octave);
+// 5: words in the vocabulary's stored form (word_storage)
 inline constexpr int kMapSchemaVersion = 5;
 
 struct MapLoadOptions {

@@ -161,6 +161,10 @@ class DescriptorIndex::Backend {
   }
 
   void Add(WordId word, const uint8_t* extracted) {
+    if (format_ != WordRowFormat::kQuantized8) {  // stored as extracted
+      AddStored(word, extracted);
+      return;
+    }
     SLAM_THROW_IF_NOT(InputError, EncodeWordRow(format_, extracted, cols_, encoded_.data()))
         << "DescriptorIndex: word " << word << " has a non-finite descriptor value";
     AddStored(word, encoded_.data());

@@ -25,33 +25,44 @@ inline float Reduce(const float part[8]) {
   return ((part[0] + part[1]) + (part[2] + part[3])) + ((part[4] + part[5]) + (part[6] + part[7]));
 }
 
-// Squared L2 of `cols` floats; with a finite `bound`, stops after a block of
+// The sum of squares behind both distances below: `add_blocks(begin, end,
+// part)` adds the squared differences of [begin, end) (a multiple of 8 long)
+// to the 8 partial sums, `square(i)` is the squared difference of element i
+// past the last 8-wide block. With a finite `bound` it stops after a block of
 // 32 once the partial result reaches it. Every addend is non-negative and
 // rounding is monotone, so a partial result never exceeds the full one, and
 // without an early stop the result is bit-identical to the unbounded one.
-// Compiled twice, for AVX2 and the baseline, chosen at load time: the 8
-// partial sums are one AVX2 register or two SSE registers, with the same
-// additions in the same order (no FMA), so both give identical results.
-__attribute__((target_clones("avx2", "default")))
-float SquaredL2(const float* a, const float* b, int cols, float bound) {
+template <typename AddBlocks, typename Square>
+inline float BoundedSumOfSquares(int cols, float bound, AddBlocks add_blocks, Square square) {
   float part[8] = {0, 0, 0, 0, 0, 0, 0, 0};
   const int vector_end = cols - cols % 8;
   constexpr int kBlock = 32;
   int i = 0;
   for (; i + kBlock <= vector_end; i += kBlock) {
-    AccumulateSquares(a, b, i, i + kBlock, part);
+    add_blocks(i, i + kBlock, part);
     if (i + kBlock < cols) {
       const float partial = Reduce(part);
       if (partial >= bound) return partial;
     }
   }
-  AccumulateSquares(a, b, i, vector_end, part);
+  add_blocks(i, vector_end, part);
   float sum = Reduce(part);
-  for (i = vector_end; i < cols; ++i) {
-    const float d = a[i] - b[i];
-    sum += d * d;
-  }
+  for (i = vector_end; i < cols; ++i) sum += square(i);
   return sum;
+}
+
+// Squared L2 of `cols` floats, bounded as above. Compiled twice, for AVX2 and
+// the baseline, chosen at load time: the 8 partial sums are one AVX2 register
+// or two SSE registers, with the same additions in the same order (no FMA),
+// so both give identical results.
+__attribute__((target_clones("avx2", "default")))
+float SquaredL2(const float* a, const float* b, int cols, float bound) {
+  return BoundedSumOfSquares(
+      cols, bound, [a, b](int begin, int end, float* part) { AccumulateSquares(a, b, begin, end, part); },
+      [a, b](int i) {
+        const float d = a[i] - b[i];
+        return d * d;
+      });
 }
 
 // The same with the second row quantized: b[i] = offset + step * codes[i],
@@ -102,24 +113,13 @@ QuantizedBlocksFn SelectQuantizedBlocks() {
 
 float QuantizedSquaredL2With(QuantizedBlocksFn blocks, const float* a, const uint8_t* codes,
                              float offset, float step, int cols, float bound) {
-  float part[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-  const int vector_end = cols - cols % 8;
-  constexpr int kBlock = 32;
-  int i = 0;
-  for (; i + kBlock <= vector_end; i += kBlock) {
-    blocks(a, codes, offset, step, i, i + kBlock, part);
-    if (i + kBlock < cols) {
-      const float partial = Reduce(part);
-      if (partial >= bound) return partial;
-    }
-  }
-  blocks(a, codes, offset, step, i, vector_end, part);
-  float sum = Reduce(part);
-  for (i = vector_end; i < cols; ++i) {
-    const float d = a[i] - (offset + step * static_cast<float>(codes[i]));
-    sum += d * d;
-  }
-  return sum;
+  return BoundedSumOfSquares(
+      cols, bound,
+      [=](int begin, int end, float* part) { blocks(a, codes, offset, step, begin, end, part); },
+      [=](int i) {
+        const float d = a[i] - (offset + step * static_cast<float>(codes[i]));
+        return d * d;
+      });
 }
 
 float QuantizedSquaredL2(const float* a, const uint8_t* codes, float offset, float step, int cols,
