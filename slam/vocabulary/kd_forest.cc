@@ -63,15 +63,32 @@ const uint8_t* KdForest::Row(WordId id) const {
   return Data(p);
 }
 
+const uint32_t* KdForest::LeafPoints(const Node& leaf) const {
+  // int32_t and uint32_t may alias; point indices are below 2^31.
+  if (leaf.dim == kPointLeaf) return reinterpret_cast<const uint32_t*>(&leaf.child[0]);
+  return &pool_[leaf.child[0]];
+}
+
+int32_t KdForest::AppendBlock(const uint32_t* points, int32_t count, uint32_t capacity) {
+  pool_.push_back(capacity);
+  const int32_t offset = static_cast<int32_t>(pool_.size());
+  pool_.insert(pool_.end(), points, points + count);
+  pool_.resize(pool_.size() + capacity - count);
+  return offset;
+}
+
 int32_t KdForest::MakeLeaf(const std::vector<uint32_t>& idx, size_t begin, size_t end) {
   const size_t count = end - begin;
-  const size_t capacity = std::max(count, static_cast<size_t>(options_.leaf_size) + 1);
-  pool_.push_back({static_cast<uint32_t>(capacity), kNoWord});
   Node node;
-  node.child[0] = static_cast<int32_t>(pool_.size());
   node.child[1] = static_cast<int32_t>(count);
-  for (size_t i = begin; i < end; ++i) pool_.push_back({idx[i], ids_[idx[i]]});
-  pool_.resize(pool_.size() + capacity - count);
+  if (count == 1) {
+    node.dim = kPointLeaf;
+    node.child[0] = static_cast<int32_t>(idx[begin]);
+  } else {
+    const size_t capacity = std::max(count, static_cast<size_t>(options_.leaf_size) + 1);
+    node.child[0] = AppendBlock(&idx[begin], static_cast<int32_t>(count),
+                                static_cast<uint32_t>(capacity));
+  }
   nodes_.push_back(node);
   return static_cast<int32_t>(nodes_.size() - 1);
 }
@@ -178,8 +195,9 @@ void KdForest::RenumberByLeaves() {
       stack.push_back(node.child[0]);
       continue;
     }
+    const uint32_t* points = LeafPoints(node);
     for (int32_t i = 0; i < node.child[1]; ++i) {
-      uint32_t& r = renamed[pool_[node.child[0] + i].point];
+      uint32_t& r = renamed[points[i]];
       if (r == kUnset) r = next++;
     }
   }
@@ -195,20 +213,23 @@ void KdForest::RenumberByLeaves() {
   }
   data_.swap(data);
   ids_.swap(ids);
-  for (const Node& node : nodes_) {
-    if (node.dim >= 0) continue;
-    for (int32_t i = 0; i < node.child[1]; ++i) {
-      LeafEntry& entry = pool_[node.child[0] + i];
-      entry.point = renamed[entry.point];
+  for (Node& node : nodes_) {
+    if (node.dim == kPointLeaf) {
+      node.child[0] = static_cast<int32_t>(renamed[node.child[0]]);
+    } else if (node.dim == kBlockLeaf) {
+      for (int32_t i = 0; i < node.child[1]; ++i) {
+        uint32_t& point = pool_[node.child[0] + i];
+        point = renamed[point];
+      }
     }
   }
 }
 
 void KdForest::CompactLeaves() {
-  std::vector<LeafEntry, HugePageAllocator<LeafEntry>> pool;
+  std::vector<uint32_t, HugePageAllocator<uint32_t>> pool;
   size_t entries = 0;
   for (const Node& node : nodes_) {
-    if (node.dim < 0) entries += 1 + std::max<int32_t>(node.child[1], 1);
+    if (node.dim == kBlockLeaf) entries += 1 + node.child[1];
   }
   pool.reserve(entries);
   // Only the leaves reachable from the roots: an insertion that split a leaf
@@ -222,13 +243,17 @@ void KdForest::CompactLeaves() {
       stack.push_back(node.child[0]);
       continue;
     }
+    if (node.dim != kBlockLeaf) continue;
     const int32_t count = node.child[1];
-    const uint32_t capacity = static_cast<uint32_t>(std::max<int32_t>(count, 1));
-    pool.push_back({capacity, kNoWord});
-    const int32_t offset = static_cast<int32_t>(pool.size());
-    pool.insert(pool.end(), pool_.begin() + node.child[0], pool_.begin() + node.child[0] + count);
-    pool.resize(pool.size() + capacity - count);
-    node.child[0] = offset;
+    const uint32_t* points = &pool_[node.child[0]];
+    if (count == 1) {
+      node.dim = kPointLeaf;
+      node.child[0] = static_cast<int32_t>(points[0]);
+      continue;
+    }
+    pool.push_back(static_cast<uint32_t>(count));
+    node.child[0] = static_cast<int32_t>(pool.size());
+    pool.insert(pool.end(), points, points + count);
   }
   pool.shrink_to_fit();
   pool_.swap(pool);
@@ -236,31 +261,38 @@ void KdForest::CompactLeaves() {
 
 void KdForest::Insert(int tree, uint32_t p) {
   const int32_t n = LeafOf(tree, p);
-  int32_t offset = nodes_[n].child[0];
   const int32_t count = nodes_[n].child[1];
-  const uint32_t capacity = pool_[offset - 1].point;
-  if (static_cast<uint32_t>(count) == capacity) {  // full (rows that cannot be split): grow
-    pool_.push_back({2 * capacity, kNoWord});
-    const int32_t moved = static_cast<int32_t>(pool_.size());
-    pool_.resize(pool_.size() + 2 * capacity);
-    std::copy_n(pool_.begin() + offset, count, pool_.begin() + moved);
-    offset = moved;
-    nodes_[n].child[0] = offset;
-  }
-  pool_[offset + count] = {p, ids_[p]};
-  nodes_[n].child[1] = count + 1;
-  if (count + 1 <= options_.leaf_size) return;
-  std::vector<uint32_t> points;
-  for (int32_t i = 0; i <= count; ++i) points.push_back(pool_[offset + i].point);
-  const size_t nodes_before = nodes_.size();
-  const size_t pool_before = pool_.size();
-  const int32_t sub = Divide(&points, 0, points.size());
-  if (nodes_[sub].dim < 0) {  // rows identical on every sampled dimension: keep the leaf
+  if (count + 1 > options_.leaf_size) {
+    // Too many for one leaf: split the leaf's points and the new one.
+    const uint32_t* held = LeafPoints(nodes_[n]);
+    std::vector<uint32_t> points(held, held + count);
+    points.push_back(p);
+    const size_t nodes_before = nodes_.size();
+    const size_t pool_before = pool_.size();
+    const int32_t sub = Divide(&points, 0, points.size());
+    if (nodes_[sub].dim >= 0) {
+      // The subtree's root slot and the old block stay unused until a rebuild.
+      nodes_[n] = nodes_[sub];
+      return;
+    }
+    // Rows identical on every sampled dimension: keep them in one leaf.
     nodes_.resize(nodes_before);
     pool_.resize(pool_before);
-    return;
   }
-  nodes_[n] = nodes_[sub];  // the subtree's root slot and the old block stay unused until a rebuild
+  Node& leaf = nodes_[n];
+  if (leaf.dim == kPointLeaf) {
+    const uint32_t first = static_cast<uint32_t>(leaf.child[0]);
+    const uint32_t capacity = static_cast<uint32_t>(std::max(2, options_.leaf_size + 1));
+    leaf.child[0] = AppendBlock(&first, 1, capacity);
+    leaf.dim = kBlockLeaf;
+  } else if (static_cast<uint32_t>(count) == pool_[leaf.child[0] - 1]) {  // full: grow
+    const uint32_t capacity = 2 * pool_[leaf.child[0] - 1];
+    const int32_t old_offset = leaf.child[0];
+    leaf.child[0] = AppendBlock(nullptr, 0, capacity);
+    std::copy_n(pool_.begin() + old_offset, count, pool_.begin() + leaf.child[0]);
+  }
+  pool_[leaf.child[0] + count] = p;
+  leaf.child[1] = count + 1;
 }
 
 void KdForest::Add(WordId id, const uint8_t* row) {
@@ -279,26 +311,10 @@ void KdForest::Add(WordId id, const uint8_t* row) {
 bool KdForest::Remove(WordId id) {
   const uint32_t p = slot_.Find(id);
   if (p == WordSlots::kNone) return false;
+  // The point stays in its leaves, skipped by its id, until a rebuild.
   ids_[p] = kNoWord;
   slot_.Erase(id);
-  if (slot_.empty()) {
-    Rebuild();  // frees everything
-    return true;
-  }
-  // A point's leaf is where its own values lead (the build and the
-  // insertion split on the same comparison), in every tree.
-  for (int t = 0; t < static_cast<int>(roots_.size()); ++t) {
-    const Node& leaf = nodes_[LeafOf(t, p)];
-    bool marked = false;
-    for (int32_t i = 0; i < leaf.child[1]; ++i) {
-      LeafEntry& entry = pool_[leaf.child[0] + i];
-      if (entry.point == p) {
-        entry.id = kNoWord;
-        marked = true;
-      }
-    }
-    SLAM_CHECK(marked);
-  }
+  if (slot_.empty()) Rebuild();  // frees everything
   return true;
 }
 
@@ -334,24 +350,26 @@ int32_t KdForest::Step(int32_t n, const uint8_t* q, float mindist,
 }
 
 void KdForest::PrefetchLeafRows(int32_t n) const {
-  const LeafEntry* leaf = &pool_[nodes_[n].child[0]];
+  const uint32_t* points = LeafPoints(nodes_[n]);
   for (int32_t i = 0; i < nodes_[n].child[1]; ++i) {
-    const uint8_t* row = Data(leaf[i].point);
+    __builtin_prefetch(&ids_[points[i]]);
+    const uint8_t* row = Data(points[i]);
     for (size_t b = 0; b < row_bytes_; b += 64) __builtin_prefetch(row + b);
   }
 }
 
 void KdForest::CheckLeaf(int32_t n, const uint8_t* q, int* checks, KdNeighbour best[2],
                          int* found) const {
-  const LeafEntry* leaf = &pool_[nodes_[n].child[0]];
+  const uint32_t* points = LeafPoints(nodes_[n]);
   const int32_t count = nodes_[n].child[1];
   for (int32_t i = 0; i < count; ++i) {
-    const LeafEntry entry = leaf[i];
-    if (entry.id == kNoWord || !Visit(entry.point)) continue;
+    const uint32_t p = points[i];
+    const WordId id = ids_[p];
+    if (id == kNoWord || !Visit(p)) continue;
     ++*checks;
-    const uint8_t* row = Data(entry.point);
+    const uint8_t* row = Data(p);
     if (*found < 2) {
-      best[(*found)++] = {entry.id, WordDistance(format_, q, row, cols_)};
+      best[(*found)++] = {id, WordDistance(format_, q, row, cols_)};
       if (*found == 2 && Closer(best[1], best[0])) std::swap(best[0], best[1]);
       continue;
     }
@@ -361,7 +379,7 @@ void KdForest::CheckLeaf(int32_t n, const uint8_t* q, int* checks, KdNeighbour b
     float d = WordDistanceBounded(format_, q, row, cols_, bound);
     if (d > bound) continue;
     if (d == bound) d = WordDistance(format_, q, row, cols_);  // a tie decides by id
-    const KdNeighbour c{entry.id, d};
+    const KdNeighbour c{id, d};
     if (Closer(c, best[1])) {
       best[1] = c;
       if (Closer(best[1], best[0])) std::swap(best[0], best[1]);
@@ -396,7 +414,9 @@ void KdForest::SearchTwo(const uint8_t* query, std::vector<KdNeighbour>* out) co
       moved = true;
     }
   }
-  for (int32_t n : at) __builtin_prefetch(&pool_[nodes_[n].child[0]]);
+  for (int32_t n : at) {
+    if (nodes_[n].dim == kBlockLeaf) __builtin_prefetch(&pool_[nodes_[n].child[0]]);
+  }
   for (int32_t n : at) PrefetchLeafRows(n);
   for (int32_t n : at) CheckLeaf(n, query, &checks, best, &found);
   while (!heap.empty() && (checks < options_.checks || found < 2)) {
@@ -413,7 +433,7 @@ void KdForest::SearchTwo(const uint8_t* query, std::vector<KdNeighbour>* out) co
 
 size_t KdForest::MemoryBytes() const {
   size_t bytes = data_.capacity() + ids_.capacity() * sizeof(WordId) +
-                 nodes_.capacity() * sizeof(Node) + pool_.capacity() * sizeof(LeafEntry) +
+                 nodes_.capacity() * sizeof(Node) + pool_.capacity() * sizeof(uint32_t) +
                  visited_.capacity() * sizeof(uint32_t);
   return bytes + slot_.MemoryBytes();
 }

@@ -77,7 +77,7 @@ class KdForest {
   void SearchTwo(const uint8_t* query, std::vector<KdNeighbour>* out) const;
   // Drops removed rows and builds every tree again.
   void Rebuild();
-  // Gives every leaf block exactly the entries it holds (a build leaves room
+  // Gives every block leaf exactly the entries it holds (a build leaves room
   // for leaf_size + 1 so that insertions rarely move a block): for a forest
   // that will not grow, e.g. an imported vocabulary used for localization.
   // Searches are unchanged; a later Add still works (a full block moves).
@@ -91,23 +91,28 @@ class KdForest {
 
  private:
   // Inner node: dim >= 0, children child[0] (value < split) and child[1].
-  // Leaf: dim == -1, child[0] = offset of its entries in pool_, child[1] =
-  // their count; pool_[offset - 1].point holds the block's capacity.
+  // Leaf, one of two kinds (child[1] is its point count in both):
+  //  - kPointLeaf: its single point is child[0] itself, no block (leaf_size
+  //    1, FLANN's, makes nearly every leaf one of these);
+  //  - kBlockLeaf: its points are pool_[child[0], child[0] + child[1]) and
+  //    pool_[child[0] - 1] holds the block's capacity.
+  // Removed points stay in their leaves until a rebuild; ids_ marks them.
+  static constexpr int32_t kBlockLeaf = -1;
+  static constexpr int32_t kPointLeaf = -2;
   struct Node {
-    int32_t dim = -1;
+    int32_t dim = kBlockLeaf;
     float split = 0.0f;
     int32_t child[2] = {-1, -1};
   };
-  // A point in a leaf with its id (kNoWord once removed), so that a search
-  // reads the id next to the point index instead of in a per-point table.
-  struct LeafEntry {
-    uint32_t point = 0;
-    WordId id = kNoWord;
-  };
+  // The points of a leaf (child[1] of them).
+  const uint32_t* LeafPoints(const Node& leaf) const;
   float Value(uint32_t p, int dim) const;
   float QueryValue(const uint8_t* q, int dim) const;
   int32_t Divide(std::vector<uint32_t>* idx, size_t begin, size_t end);
   int32_t MakeLeaf(const std::vector<uint32_t>& idx, size_t begin, size_t end);
+  // Appends a block of `capacity` entries holding `points` (count of them)
+  // after its capacity word; returns the offset of the first entry.
+  int32_t AppendBlock(const uint32_t* points, int32_t count, uint32_t capacity);
   // The leaf of `tree` that holds (or would hold) point p.
   int32_t LeafOf(int tree, uint32_t p) const;
   void Insert(int tree, uint32_t p);
@@ -135,7 +140,7 @@ class KdForest {
   std::vector<WordId> ids_;             // point -> id (kNoWord once removed)
   WordSlots slot_;                      // id -> point
   std::vector<Node, HugePageAllocator<Node>> nodes_;
-  std::vector<LeafEntry, HugePageAllocator<LeafEntry>> pool_;  // leaf entry blocks (see Node)
+  std::vector<uint32_t, HugePageAllocator<uint32_t>> pool_;  // block leaves' points (see Node)
   std::vector<int32_t> roots_;
   size_t rows_at_build_ = 0;
   int rebuilds_ = 0;

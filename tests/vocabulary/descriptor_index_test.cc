@@ -131,6 +131,60 @@ TEST(DescriptorIndex, CompactKeepsEverySearchAndStillGrows) {
   }
 }
 
+// Leaves of one point (kept in the tree node itself) and of several (a
+// block), identical rows that no split can separate, insertions into a
+// compacted forest and removals: with exhaustive checks every search finds
+// what the linear scan finds, ties decided by id.
+TEST(DescriptorIndex, EveryLeafShapeSearchesLikeTheLinearScan) {
+  for (int leaf_size : {1, 4}) {
+    for (DescriptorKind kind : {DescriptorKind::kFloat, DescriptorKind::kBinary}) {
+      SCOPED_TRACE(std::to_string(leaf_size) +
+                   (kind == DescriptorKind::kFloat ? " float" : " binary"));
+      const SyntheticDescriptors gen = Generator(kind);
+      const cv::Mat random = gen.Random(600, 21);
+      cv::Mat words;
+      for (int copy = 0; copy < 12; ++copy) words.push_back(random.rowRange(0, 5));  // duplicates
+      words.push_back(random.rowRange(5, random.rows));
+      DescriptorIndexOptions options;
+      options.kd_leaf_size = leaf_size;
+      options.checks = 100000;
+      DescriptorIndex forest(options, kind, words.cols);
+      options.float_kind = IndexKind::kLinear;
+      options.binary_kind = IndexKind::kLinear;
+      DescriptorIndex linear(options, kind, words.cols);
+      auto add = [&](WordId id, const cv::Mat& row) {
+        forest.Add(id, row.ptr<uint8_t>(0));
+        linear.Add(id, row.ptr<uint8_t>(0));
+      };
+      auto expect_same = [&](const char* phase) {
+        SCOPED_TRACE(phase);
+        const auto a = Search(forest, words);
+        const auto b = Search(linear, words);
+        for (size_t q = 0; q < a.size(); ++q) {
+          ASSERT_EQ(a[q].size(), b[q].size());
+          for (size_t k = 0; k < a[q].size(); ++k) {
+            ASSERT_EQ(a[q][k].word, b[q][k].word) << "query " << q;
+            ASSERT_EQ(a[q][k].distance, b[q][k].distance) << "query " << q;
+          }
+        }
+      };
+      for (int i = 0; i < words.rows; ++i) add(i + 1, words.row(i));
+      expect_same("grown");
+      for (int i = 0; i < words.rows; i += 7) {
+        forest.Remove(i + 1);
+        linear.Remove(i + 1);
+      }
+      expect_same("removed");
+      forest.Rebuild();
+      forest.Compact();
+      expect_same("compacted");
+      // Into point leaves, full blocks and the duplicates' block.
+      for (int i = 0; i < 100; ++i) add(10000 + i, words.row((i * 37) % words.rows));
+      expect_same("grown after compacting");
+    }
+  }
+}
+
 TEST(DescriptorIndex, EmptyAfterRemovingEverythingAndReusableAfterwards) {
   const SyntheticDescriptors gen = Generator(DescriptorKind::kFloat);
   const cv::Mat words = gen.Random(10, 1);
