@@ -178,9 +178,10 @@ Localizer::Attempt Localizer::TryCandidate(const Candidate& candidate, const Rgb
                                            LocalizationRecord* record) {
   const MapNode& node = map_.node(candidate.node);
   Stopwatch watch;
+  // The node's rows shared with words are read from the vocabulary.
   const RegistrationResult registration =
-      EstimateTransform(registration_, node.features.Decode(), node.camera, features,
-                        frame.camera, matcher_.get());
+      EstimateTransform(registration_, node.features.Decode(&lcd_->vocabulary()), node.camera,
+                        features, frame.camera, matcher_.get());
   record->timings.registration_ms += watch.ElapsedMs();
   ++record->candidates_tried;
   record->registration_status = registration.status;

@@ -20,6 +20,9 @@ struct MatcherOptions {
   std::string type = "nndr";  // "nndr" or "superglue" (Vis/CorNNType 1 or 6)
   SuperGlueOptions superglue;
   void Check() const;
+  // Whether the matcher reads the keypoints' responses (SuperGlue's scores);
+  // NNDR does not, so a map loaded for it can leave them out.
+  bool ReadsKeypointResponses() const { return type == "superglue"; }
 };
 
 // Reads MatcherOptions; unknown keys are rejected with their path; checked.

@@ -119,7 +119,9 @@ std::vector<Eigen::Vector3f> DecodePoints(const Blob& blob, const std::string& w
   return points;
 }
 
-Blob EncodePackedKeypoints(const std::vector<PackedKeypoint>& keypoints) {
+Blob EncodePackedKeypoints(const std::vector<PackedKeypoint>& keypoints,
+                           const std::vector<float>& responses) {
+  SLAM_CHECK(responses.size() == keypoints.size());
   Blob blob(keypoints.size() * kPackedKeypointBytes);
   for (size_t n = 0; n < keypoints.size(); ++n) {
     const PackedKeypoint& k = keypoints[n];
@@ -128,16 +130,18 @@ Blob EncodePackedKeypoints(const std::vector<PackedKeypoint>& keypoints) {
     std::memcpy(out + 2, &k.y_eighth_px, 2);
     std::memcpy(out + 4, &k.size_eighth_px, 2);
     std::memcpy(out + 6, &k.angle_ninetieth_deg, 2);
-    std::memcpy(out + 8, &k.response, 4);
+    std::memcpy(out + 8, &responses[n], 4);
   }
   return blob;
 }
 
-std::vector<PackedKeypoint> DecodePackedKeypoints(const Blob& blob, const std::string& what) {
+std::vector<PackedKeypoint> DecodePackedKeypoints(const Blob& blob, const std::string& what,
+                                                  std::vector<float>* responses) {
   SLAM_THROW_IF_NOT(InputError, blob.size() % kPackedKeypointBytes == 0)
       << what << ": blob of " << blob.size() << " bytes is not a multiple of "
       << kPackedKeypointBytes;
   std::vector<PackedKeypoint> keypoints(blob.size() / kPackedKeypointBytes);
+  responses->resize(keypoints.size());
   for (size_t n = 0; n < keypoints.size(); ++n) {
     PackedKeypoint& k = keypoints[n];
     const uint8_t* in = blob.data() + kPackedKeypointBytes * n;
@@ -145,7 +149,7 @@ std::vector<PackedKeypoint> DecodePackedKeypoints(const Blob& blob, const std::s
     std::memcpy(&k.y_eighth_px, in + 2, 2);
     std::memcpy(&k.size_eighth_px, in + 4, 2);
     std::memcpy(&k.angle_ninetieth_deg, in + 6, 2);
-    std::memcpy(&k.response, in + 8, 4);
+    std::memcpy(&(*responses)[n], in + 8, 4);
   }
   return keypoints;
 }

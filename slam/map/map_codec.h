@@ -36,11 +36,15 @@ Blob EncodePoints(const std::vector<Eigen::Vector3f>& points);  // 3 floats each
 std::vector<Eigen::Vector3f> DecodePoints(const Blob& blob, const std::string& what);
 
 // Compact node features (compact_features.h): 12-byte packed keypoints
-// (x y size angle as uint16/int16, response as float, little-endian), three
-// half floats per 3D point, and float arrays (row offsets and steps).
+// (x y size angle as uint16/int16, then the response as float,
+// little-endian), three half floats per 3D point, and float arrays (row
+// offsets and steps).
 inline constexpr size_t kPackedKeypointBytes = 12;
-Blob EncodePackedKeypoints(const std::vector<PackedKeypoint>& keypoints);
-std::vector<PackedKeypoint> DecodePackedKeypoints(const Blob& blob, const std::string& what);
+// `responses`: one per keypoint.
+Blob EncodePackedKeypoints(const std::vector<PackedKeypoint>& keypoints,
+                           const std::vector<float>& responses);
+std::vector<PackedKeypoint> DecodePackedKeypoints(const Blob& blob, const std::string& what,
+                                                  std::vector<float>* responses);
 Blob EncodeHalfs(const std::vector<uint16_t>& values);
 std::vector<uint16_t> DecodeHalfs(const Blob& blob, const std::string& what);
 Blob EncodeFloats(const std::vector<float>& values);

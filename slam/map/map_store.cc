@@ -13,6 +13,7 @@
 
 #include "slam/core/check.h"
 #include "slam/map/map_codec.h"
+#include "slam/map/shared_rows.h"
 #include "slam/map/sqlite_db.h"
 
 namespace duskmap {
@@ -95,7 +96,7 @@ void WriteNodes(SqliteDatabase& db, const Map& map) {
       insert.BindNull(9);
     }
     insert.BindInt(10, static_cast<int64_t>(n.features.size()));
-    insert.BindBlob(11, EncodePackedKeypoints(n.features.keypoints()));
+    insert.BindBlob(11, EncodePackedKeypoints(n.features.keypoints(), n.features.responses()));
     insert.BindBlob(12, EncodeHalfs(n.features.half_points()));
     insert.BindBlob(13, EncodeMatrix(n.features.codes()));
     std::vector<float> scales = n.features.row_offsets();
@@ -258,7 +259,8 @@ void ReadSessions(SqliteDatabase& db, Map* map) {
   }
 }
 
-MapNode ReadNodeRow(const SqliteStatement& row, const MapMetadata& m, const std::string& path) {
+MapNode ReadNodeRow(const SqliteStatement& row, const MapMetadata& m, const std::string& path,
+                    const MapLoadOptions& options) {
   MapNode n;
   n.id = row.Int(0);
   const std::string what = path + ": node " + std::to_string(n.id);
@@ -271,7 +273,9 @@ MapNode ReadNodeRow(const SqliteStatement& row, const MapMetadata& m, const std:
   n.camera = DecodeCamera(row.Blob(7), what + " camera");
   if (!row.IsNull(8)) n.truth_from_camera = DecodePose(row.Blob(8), what + " ground truth");
   const int64_t count = row.Int(9);
-  std::vector<PackedKeypoint> keypoints = DecodePackedKeypoints(row.Blob(10), what + " keypoints");
+  std::vector<float> responses;
+  std::vector<PackedKeypoint> keypoints =
+      DecodePackedKeypoints(row.Blob(10), what + " keypoints", &responses);
   std::vector<uint16_t> points = DecodeHalfs(row.Blob(11), what + " 3D points");
   SLAM_THROW_IF_NOT(InputError, static_cast<int64_t>(keypoints.size()) == count &&
                                     static_cast<int64_t>(points.size()) == 3 * count)
@@ -290,7 +294,9 @@ MapNode ReadNodeRow(const SqliteStatement& row, const MapMetadata& m, const std:
   n.features = CompactFeatures::FromParts(m.descriptor_kind, m.descriptor_storage,
                                           m.descriptor_cv_type, std::move(codes),
                                           std::move(offsets), std::move(steps),
-                                          std::move(keypoints), std::move(points));
+                                          std::move(keypoints), std::move(responses),
+                                          std::move(points));
+  if (!options.keep_keypoint_responses) n.features.DropKeypointResponses();
   n.word_ids = DecodeWordIds(row.Blob(14), what + " word ids");
   n.word_counts = DecodeInt32s(row.Blob(15), what + " word counts");
   SLAM_THROW_IF_NOT(InputError, n.word_counts.size() == n.word_ids.size())
@@ -300,13 +306,14 @@ MapNode ReadNodeRow(const SqliteStatement& row, const MapMetadata& m, const std:
   return n;
 }
 
-void ReadNodes(SqliteDatabase& db, const MapMetadata& m, Map* map) {
+void ReadNodes(SqliteDatabase& db, const MapMetadata& m, const MapLoadOptions& options,
+               Map* map) {
   SqliteStatement select = db.Prepare(
       "SELECT id, session, frame_index, timestamp_s, map_pose, odom_pose, body_from_camera, "
       "camera, truth_pose, num_features, keypoints, points, descriptors, descriptor_scales, "
       "word_ids, word_counts, vocabulary_features FROM nodes "
       "ORDER BY id");
-  while (select.Step()) map->AddNode(ReadNodeRow(select, m, db.path()));
+  while (select.Step()) map->AddNode(ReadNodeRow(select, m, db.path(), options));
 }
 
 void ReadLinks(SqliteDatabase& db, Map* map) {
@@ -360,6 +367,15 @@ void CheckCounts(const std::map<std::string, std::string>& meta, const Map& map,
 }  // namespace
 
 void SaveMap(const Map& map, const std::string& path) {
+  for (const auto& [id, node] : map.nodes()) {
+    SLAM_THROW_IF_NOT(InputError, !node.features.has_shared_rows())
+        << path << ": node " << id
+        << " shares descriptor rows with words held apart (a map loaded for localization); "
+           "it cannot be saved";
+    SLAM_THROW_IF_NOT(InputError, node.features.has_responses())
+        << path << ": node " << id
+        << " has no keypoint responses (a map loaded for localization); it cannot be saved";
+  }
   const std::string temp = path + ".saving";
   SLAM_THROW_IF_NOT(InputError, std::remove(temp.c_str()) == 0 || errno == ENOENT)
       << temp << ": cannot remove a stale temporary file: " << std::strerror(errno);
@@ -408,7 +424,7 @@ Map LoadMapFrom(const std::string& path, const MapLoadOptions& options, MapWords
   const std::map<std::string, std::string>& meta = header.meta;
   Map map(header.metadata);
   ReadSessions(db, &map);
-  ReadNodes(db, header.metadata, &map);
+  ReadNodes(db, header.metadata, options, &map);
   map.ReserveNodeIdsUpTo(MetaInt(meta, "last_node_id", path));
   ReadLinks(db, &map);
   const int64_t next_word_id = MetaInt(meta, "next_word_id", path);
@@ -443,6 +459,7 @@ Map LoadMap(const std::string& path, const MapLoadOptions& options) {
 MapAndWords LoadMapAndWords(const std::string& path, const MapLoadOptions& options) {
   MapAndWords loaded;
   loaded.map = LoadMapFrom(path, options, &loaded.words);
+  if (options.share_node_rows_with_words) ShareNodeRowsWithWords(loaded.words, &loaded.map);
   return loaded;
 }
 

@@ -32,6 +32,15 @@ struct MapLoadOptions {
   // apart (LoadMapAndWords does both at once), for a localizer that imports
   // them and then lets them go.
   bool load_words = true;
+  // LoadMapAndWords only: the node descriptor rows that are a word's stored
+  // row become references to the word (map/shared_rows.h), about a third
+  // of a binary night map's descriptor bytes. Decode() of those nodes then
+  // needs the vocabulary the words go into; the map cannot be saved.
+  bool share_node_rows_with_words = true;
+  // false: drop the keypoint responses (CompactFeatures::
+  // DropKeypointResponses), 4 bytes per feature, for a localizer whose
+  // matcher does not read them (all but SuperGlue). The map cannot be saved.
+  bool keep_keypoint_responses = true;
 };
 
 // Throws InputError naming the path when the file cannot be written.

@@ -177,6 +177,14 @@ bool Vocabulary::ContainsWord(WordId word) const {
   return index_ != nullptr && index_->Contains(word);
 }
 
+WordRowFormat Vocabulary::stored_row_format() const {
+  return index_ == nullptr ? WordRowFormat::kFloat32 : index_->format();
+}
+
+const uint8_t* Vocabulary::FindStoredRow(WordId word) const {
+  return ContainsWord(word) ? index_->StoredRow(word) : nullptr;
+}
+
 size_t Vocabulary::num_words() const { return index_ == nullptr ? 0 : index_->size(); }
 int Vocabulary::index_rebuilds() const { return index_ == nullptr ? 0 : index_->rebuild_count(); }
 

@@ -16,6 +16,7 @@
 #include "slam/vocabulary/descriptor_index.h"
 #include "slam/vocabulary/inverted_index.h"
 #include "slam/vocabulary/vocabulary_snapshot.h"
+#include "slam/vocabulary/word_row_source.h"
 #include "slam/vocabulary/word_types.h"
 
 namespace duskmap {
@@ -53,10 +54,10 @@ struct NodeRemoval {
   std::vector<WordId> removed_words;  // words that lost their last reference, sorted
 };
 
-class Vocabulary {
+class Vocabulary : public WordRowSource {
  public:
   explicit Vocabulary(const VocabularyOptions& options);
-  ~Vocabulary();
+  ~Vocabulary() override;
 
   // Mapping: quantizes `features`' descriptors, creates the new words and
   // references them from `node`. Throws InputError when the node exists or
@@ -96,6 +97,11 @@ class Vocabulary {
   // vocabulary's incrementally grown trees (with exhaustive checks they match).
   void Import(const VocabularySnapshot& snapshot);
   const VocabularyOptions& options() const { return options_; }
+
+  // WordRowSource: the live words' stored rows (nullptr for an absent word;
+  // kFloat32 before the first node fixed the format).
+  WordRowFormat stored_row_format() const override;
+  const uint8_t* FindStoredRow(WordId word) const override;
 
  private:
   NodeQuantization Run(const cv::Mat& descriptors, DescriptorKind kind, bool create,

@@ -197,7 +197,18 @@ TEST_F(EngineSessions, StoredMapLocalizesIdenticallyAndStaysUnchanged) {
       map.words().descriptors.total() * map.words().descriptors.elemSize();
   EXPECT_EQ(words_apart.memory.words_index_bytes + stored_words_bytes,
             from_file.memory.words_index_bytes);
-  for (const LocalizationRun* other : {&from_file, &words_apart}) {
+  // As the runner and `duskmap localize` load it: the words apart and the
+  // node rows that are words' rows shared with them (fewer bytes, same
+  // records).
+  MapAndWords shared = LoadMapAndWords(before, load_options);
+  size_t shared_rows = 0;
+  for (const auto& [id, node] : shared.map.nodes()) shared_rows += node.features.num_shared_rows();
+  EXPECT_GT(shared_rows, 0u);
+  const LocalizationRun rows_shared =
+      LocalizeSession(shared.map, std::move(shared.words), *reader, TestOptions());
+  EXPECT_LT(rows_shared.memory.descriptors_bytes, words_apart.memory.descriptors_bytes);
+  EXPECT_EQ(rows_shared.memory.words_index_bytes, words_apart.memory.words_index_bytes);
+  for (const LocalizationRun* other : {&from_file, &words_apart, &rows_shared}) {
     ASSERT_EQ(in_memory.records.size(), other->records.size());
     for (size_t i = 0; i < in_memory.records.size(); ++i) {
       const LocalizationRecord &a = in_memory.records[i], &b = other->records[i];

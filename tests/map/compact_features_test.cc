@@ -63,7 +63,7 @@ TEST(CompactFeatures, Float32StorageAndBinaryRowsAreExact) {
 TEST(CompactFeatures, KeypointsAndPointsArePackedClosely) {
   const FrameFeatures f = SurfLikeFeatures(20);
   const CompactFeatures c = CompactFeatures::Encode(f, DescriptorStorage::kUint8);
-  EXPECT_EQ(c.KeypointPointMemoryBytes(), 20u * (12 + 6));
+  EXPECT_EQ(c.KeypointPointMemoryBytes(), 20u * (8 + 4 + 6));
   const FrameFeatures d = c.Decode();
   for (int i = 0; i < 20; ++i) {
     const cv::KeyPoint &a = f.keypoints[i], &b = d.keypoints[i];
@@ -103,11 +103,35 @@ TEST(CompactFeatures, BadInputThrows) {
   EXPECT_THROW(CompactFeatures::Encode(f, DescriptorStorage::kUint8), InputError);
   EXPECT_THROW(CompactFeatures::FromParts(DescriptorKind::kFloat, DescriptorStorage::kUint8, CV_32F,
                                           cv::Mat(2, 64, CV_8U), {0.f}, {0.f},
-                                          std::vector<PackedKeypoint>(2),
+                                          std::vector<PackedKeypoint>(2), std::vector<float>(2),
                                           std::vector<uint16_t>(6)),
                InputError);
+  EXPECT_THROW(CompactFeatures::FromParts(DescriptorKind::kBinary, DescriptorStorage::kFloat32,
+                                          CV_8U, cv::Mat(2, 32, CV_8U), {}, {},
+                                          std::vector<PackedKeypoint>(2), std::vector<float>(1),
+                                          std::vector<uint16_t>(6)),
+               InputError);  // a response missing
   EXPECT_THROW(ParseDescriptorStorage("float16"), ConfigError);
   EXPECT_EQ(ParseDescriptorStorage("uint8"), DescriptorStorage::kUint8);
+}
+
+// A localizer whose matcher does not read responses drops them: 4 bytes
+// fewer per feature, everything else decoded as before.
+TEST(CompactFeatures, DroppedResponsesDecodeAsZeroAndFreeTheirBytes) {
+  const FrameFeatures f = SurfLikeFeatures(20);
+  CompactFeatures c = CompactFeatures::Encode(f, DescriptorStorage::kUint8);
+  const FrameFeatures kept = c.Decode();
+  EXPECT_TRUE(c.has_responses());
+  c.DropKeypointResponses();
+  EXPECT_FALSE(c.has_responses());
+  EXPECT_EQ(c.KeypointPointMemoryBytes(), 20u * (8 + 6));
+  const FrameFeatures dropped = c.Decode();
+  for (int i = 0; i < 20; ++i) {
+    EXPECT_EQ(dropped.keypoints[i].response, 0.0f);
+    EXPECT_EQ(dropped.keypoints[i].pt, kept.keypoints[i].pt);
+    EXPECT_EQ(dropped.keypoints[i].angle, kept.keypoints[i].angle);
+  }
+  EXPECT_EQ(cv::norm(dropped.descriptors, kept.descriptors, cv::NORM_INF), 0.0);
 }
 
 }  // namespace

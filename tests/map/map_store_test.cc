@@ -20,6 +20,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
+std::vector<uint8_t> ReadFileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::vector<uint8_t>(std::istreambuf_iterator<char>(in), {});
+}
+
 bool SamePose(const Rigid3d& a, const Rigid3d& b) {
   return a.translation == b.translation && a.rotation.coeffs() == b.rotation.coeffs();
 }
@@ -240,6 +245,29 @@ TEST_F(MapStoreTest, MapAndWordsLoadTogetherAsApart) {
   EXPECT_TRUE(SameMatrix(loaded.words.descriptors, map.words().descriptors));
   Tamper("DELETE FROM words WHERE id = 4");
   EXPECT_THROW(LoadMapAndWords(path_), InputError);
+}
+
+// A localizer that does not read keypoint responses loads without them;
+// such a map cannot be saved (the file on disk stays as it was).
+TEST_F(MapStoreTest, ResponsesCanBeLeftOutAndSuchAMapIsNotSaved) {
+  const Map map = testing::MakeTestMap(2);
+  SaveMap(map, path_);
+  const std::vector<uint8_t> saved = ReadFileBytes(path_);
+  MapLoadOptions options;
+  options.keep_keypoint_responses = false;
+  const Map loaded = LoadMap(path_, options);
+  for (const auto& [id, node] : loaded.nodes()) {
+    EXPECT_FALSE(node.features.has_responses());
+    EXPECT_LT(node.features.KeypointPointMemoryBytes(),
+              map.node(id).features.KeypointPointMemoryBytes());
+    const FrameFeatures a = node.features.Decode(), b = map.node(id).features.Decode();
+    for (size_t i = 0; i < a.size(); ++i) {
+      EXPECT_EQ(a.keypoints[i].response, 0.0f);
+      EXPECT_EQ(a.keypoints[i].pt, b.keypoints[i].pt);
+    }
+  }
+  EXPECT_THROW(SaveMap(loaded, path_), InputError);
+  EXPECT_EQ(ReadFileBytes(path_), saved);
 }
 
 TEST_F(MapStoreTest, VocabularyRoundTripsWithCountsAndNextWordId) {
