@@ -284,6 +284,10 @@ void ApartmentOptions::Check() const {
       << "scene.lamp_intensity_scale must be > 0, got " << lamp_intensity_scale;
   SLAM_THROW_IF_NOT(ConfigError, bedroom_ceiling_cd >= 0.0 && living_ceiling_cd >= 0.0)
       << "scene.bedroom_ceiling_cd and scene.living_ceiling_cd must be >= 0";
+  SLAM_THROW_IF_NOT(ConfigError, window_reflectance >= 0.0 && window_reflectance <= 0.5)
+      << "scene.window_reflectance must be in [0, 0.5], got " << window_reflectance;
+  SLAM_THROW_IF_NOT(ConfigError, floor_reflectance >= 0.0 && floor_reflectance <= 0.5)
+      << "scene.floor_reflectance must be in [0, 0.5], got " << floor_reflectance;
   const bool time_ok = living_lamp_on_from.size() == 5 && living_lamp_on_from[2] == ':';
   SLAM_THROW_IF_NOT(ConfigError, time_ok)
       << "scene.living_lamp_on_from must be \"HH:MM\", got \"" << living_lamp_on_from << "\"";
@@ -301,6 +305,13 @@ Scene BuildApartment(const ApartmentOptions& options) {
   AddKitchen(builder, options);
   AddCorridor(builder, options);
   AddBedroom(builder, options);
+  for (Quad& q : s.quads) {
+    if (q.emission == Emission::kSky) q.mirror_reflectance = options.window_reflectance;
+    // The floors: the quads at z = 0 facing up (rugs and boxes lie above).
+    if (q.normal().z() > 0.99 && std::abs(q.origin_in_world.z()) < 1e-9) {
+      q.mirror_reflectance = options.floor_reflectance;
+    }
+  }
   s.min_corner_xy = Eigen::Vector2d(0.0, 0.0);
   s.max_corner_xy = Eigen::Vector2d(10.0, 9.0);
   s.docking_world_from_camera =

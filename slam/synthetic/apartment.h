@@ -23,6 +23,14 @@ struct ApartmentOptions {
   std::string living_lamp_on_from = "17:54";  // clock time the living-room floor lamp goes on
   double bedroom_ceiling_cd = 0.0;  // a bedroom ceiling light on in every session; 0 = none
   double living_ceiling_cd = 0.0;   // a living-room ceiling light on in every session; 0 = none
+  // Window glass reflects the room (mirror reflectance at normal incidence,
+  // e.g. 0.08 for double glazing): invisible against the daylight sky, the
+  // room's mirror image in a dark pane at night. 0 = windows only transmit.
+  double window_reflectance = 0.0;
+  // The floors' varnish or glaze as a mirror (reflectance at normal
+  // incidence, e.g. 0.04), growing towards grazing views; rugs do not
+  // reflect. 0 = matte floors.
+  double floor_reflectance = 0.0;
 
   void Check() const;
 };

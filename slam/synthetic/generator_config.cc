@@ -15,6 +15,8 @@ void ReadScene(JsonFields f, ApartmentOptions* o) {
   f.Read("living_lamp_on_from", &o->living_lamp_on_from);
   f.Read("bedroom_ceiling_cd", &o->bedroom_ceiling_cd);
   f.Read("living_ceiling_cd", &o->living_ceiling_cd);
+  f.Read("window_reflectance", &o->window_reflectance);
+  f.Read("floor_reflectance", &o->floor_reflectance);
   f.RejectUnknown();
 }
 

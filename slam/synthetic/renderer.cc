@@ -19,18 +19,41 @@ struct Renderer::QuadSetup {
   double cos_a = 0, cos_b = 0, cos_c = 0;  // n . d (unnormalised ray)
 };
 
+namespace {
+
+// Texture access without going through cv::Mat per pixel.
+struct Texture {
+  const uint8_t* data;
+  size_t step;
+  int max_x, max_y;
+};
+
+std::vector<Texture> TexturesOf(const std::vector<cv::Mat>& radiance) {
+  std::vector<Texture> textures(radiance.size());
+  for (size_t i = 0; i < radiance.size(); ++i) {
+    SLAM_CHECK(radiance[i].type() == CV_32FC3 && !radiance[i].empty());
+    textures[i] = {radiance[i].data, radiance[i].step[0], radiance[i].cols - 1,
+                   radiance[i].rows - 1};
+  }
+  return textures;
+}
+
+}  // namespace
+
 Renderer::Renderer(const Scene& scene, const PinholeCamera& camera, double near_m)
     : scene_(scene), camera_(camera), near_m_(near_m) {
   SLAM_CHECK(camera_.IsValid());
+  for (const Quad& q : scene_.quads) has_mirrors_ |= q.mirror_reflectance > 0.0;
 }
 
-bool Renderer::SetupQuad(int index, const Rigid3d& camera_from_world, QuadSetup* s) const {
-  const Quad& q = scene_.quads[index];
+bool Renderer::SetupQuad(const Quad& q, int index, const Rigid3d& camera_from_world,
+                         bool mirrored, QuadSetup* s) const {
   const Eigen::Matrix3d r = camera_from_world.rotation.toRotationMatrix();
   const Eigen::Vector3d o = camera_from_world * q.origin_in_world;
   const Eigen::Vector3d u = r * q.u_axis, v = r * q.v_axis, n = u.cross(v);
-  const double k = n.dot(o);
-  if (k >= -1e-9) return false;  // back face or edge-on
+  const double k = n.dot(o);  // the plane n . x = k (camera frame)
+  // Back face or edge-on (a mirror image shows the side its normal turns away).
+  if ((mirrored ? -k : k) >= -1e-9) return false;
   const Eigen::Vector3d corners[4] = {o, o + u * q.size_u_m, o + u * q.size_u_m + v * q.size_v_m,
                                       o + v * q.size_v_m};
   s->count = 0;
@@ -62,7 +85,8 @@ bool Renderer::SetupQuad(int index, const Rigid3d& camera_from_world, QuadSetup*
   return true;
 }
 
-void Renderer::RasterizeDepth(const QuadSetup& s, cv::Mat* inv_depth, cv::Mat* ids) const {
+void Renderer::RasterizeDepth(const QuadSetup& s, cv::Mat* inv_depth, cv::Mat* ids,
+                              const MirrorMask* mask) const {
   double y_min = 1e30, y_max = -1e30;
   for (int i = 0; i < s.count; ++i) {
     y_min = std::min(y_min, s.polygon[i].y());
@@ -86,11 +110,94 @@ void Renderer::RasterizeDepth(const QuadSetup& s, cv::Mat* inv_depth, cv::Mat* i
     const int col_end = std::min(camera_.width - 1, static_cast<int>(std::floor(x_hi)));
     float* depth_row = inv_depth->ptr<float>(row);
     int* id_row = ids->ptr<int>(row);
+    const int* mirror_ids = mask ? mask->ids->ptr<int>(row) : nullptr;
+    const float* mirror_depth = mask ? mask->depth_m->ptr<float>(row) : nullptr;
     double inv = s.inv_a * col_begin + s.inv_b * row + s.inv_c;
     for (int col = col_begin; col <= col_end; ++col, inv += s.inv_a) {
+      if (mask && (mirror_ids[col] != mask->mirror || inv * mirror_depth[col] >= 1.0)) continue;
       if (inv > depth_row[col]) {
         depth_row[col] = static_cast<float>(inv);
         id_row[col] = s.index;
+      }
+    }
+  }
+}
+
+namespace {
+
+// The bilinear, perspective-correct radiance of quad setup s at pixel
+// (col, row), whose depth is z.
+template <typename Setup>
+void Sample(const Setup& s, const Texture& t, int col, int row, double z, float* out) {
+  const double x = (s.sa * col + s.sb * row + s.sc) * z + s.sd;
+  const double y = (s.ta * col + s.tb * row + s.tc) * z + s.td;
+  const int x0 = std::clamp(static_cast<int>(std::floor(x)), 0, t.max_x);
+  const int y0 = std::clamp(static_cast<int>(std::floor(y)), 0, t.max_y);
+  const int x1 = std::min(x0 + 1, t.max_x), y1 = std::min(y0 + 1, t.max_y);
+  const float fx = static_cast<float>(std::clamp(x - x0, 0.0, 1.0));
+  const float fy = static_cast<float>(std::clamp(y - y0, 0.0, 1.0));
+  const float* r0 = reinterpret_cast<const float*>(t.data + y0 * t.step);
+  const float* r1 = reinterpret_cast<const float*>(t.data + y1 * t.step);
+  const float w00 = (1 - fx) * (1 - fy), w01 = fx * (1 - fy), w10 = (1 - fx) * fy, w11 = fx * fy;
+  for (int k = 0; k < 3; ++k) {
+    out[k] = r0[3 * x0 + k] * w00 + r0[3 * x1 + k] * w01 + r1[3 * x0 + k] * w10 + r1[3 * x1 + k] * w11;
+  }
+}
+
+}  // namespace
+
+void Renderer::AddReflection(int mirror, const std::vector<cv::Mat>& radiance,
+                             const Rigid3d& camera_from_world, RenderedView* view) const {
+  const Quad& glass = scene_.quads[mirror];
+  const Eigen::Vector3d n = glass.normal();  // towards the room
+  const Eigen::Vector3d& p0 = glass.origin_in_world;
+  auto point = [&](const Eigen::Vector3d& x) -> Eigen::Vector3d {
+    return x - 2.0 * (x - p0).dot(n) * n;
+  };
+  auto direction = [&](const Eigen::Vector3d& d) -> Eigen::Vector3d {
+    return d - 2.0 * d.dot(n) * n;
+  };
+  const cv::Size size(camera_.width, camera_.height);
+  mirror_inv_depth_.create(size, CV_32FC1);
+  mirror_inv_depth_.setTo(cv::Scalar(0.0f));
+  mirror_ids_.create(size, CV_32SC1);
+  mirror_ids_.setTo(cv::Scalar(-1));
+  const MirrorMask mask{&view->surface_id, &view->depth_m, mirror};
+  std::vector<QuadSetup> setups(scene_.quads.size());
+  for (size_t i = 0; i < scene_.quads.size(); ++i) {
+    const Quad& q = scene_.quads[i];
+    if (static_cast<int>(i) == mirror) continue;
+    // Only what is on the room's side of the glass is reflected.
+    const Eigen::Vector3d far = q.origin_in_world + q.u_axis * q.size_u_m + q.v_axis * q.size_v_m;
+    const double sides[4] = {(q.origin_in_world - p0).dot(n), (far - p0).dot(n),
+                             (q.origin_in_world + q.u_axis * q.size_u_m - p0).dot(n),
+                             (q.origin_in_world + q.v_axis * q.size_v_m - p0).dot(n)};
+    if (*std::max_element(sides, sides + 4) <= 0.0) continue;
+    Quad image = q;
+    image.origin_in_world = point(q.origin_in_world);
+    image.u_axis = direction(q.u_axis);
+    image.v_axis = direction(q.v_axis);
+    if (SetupQuad(image, static_cast<int>(i), camera_from_world, true, &setups[i])) {
+      RasterizeDepth(setups[i], &mirror_inv_depth_, &mirror_ids_, &mask);
+    }
+  }
+  const std::vector<Texture> textures = TexturesOf(radiance);
+  const double r0 = glass.mirror_reflectance;
+  for (int row = 0; row < size.height; ++row) {
+    const int* id_row = mirror_ids_.ptr<int>(row);
+    const float* inv_row = mirror_inv_depth_.ptr<float>(row);
+    const float* cos_row = view->cos_incidence.ptr<float>(row);
+    float* out = view->radiance.ptr<float>(row);
+    for (int col = 0; col < size.width; ++col) {
+      const int id = id_row[col];
+      if (id < 0) continue;
+      float reflected[3];
+      Sample(setups[id], textures[id], col, row, 1.0 / inv_row[col], reflected);
+      // Schlick's approximation of the Fresnel reflectance.
+      const double c = 1.0 - std::clamp(static_cast<double>(cos_row[col]), 0.0, 1.0);
+      const float fresnel = static_cast<float>(r0 + (1.0 - r0) * c * c * c * c * c);
+      for (int k = 0; k < 3; ++k) {
+        out[3 * col + k] = (1.0f - fresnel) * out[3 * col + k] + fresnel * reflected[k];
       }
     }
   }
@@ -109,21 +216,11 @@ void Renderer::Render(const std::vector<cv::Mat>& radiance, const Rigid3d& world
   view->surface_id.setTo(cv::Scalar(-1));
   std::vector<QuadSetup> setups(scene_.quads.size());
   for (size_t i = 0; i < scene_.quads.size(); ++i) {
-    if (SetupQuad(static_cast<int>(i), camera_from_world, &setups[i])) {
+    if (SetupQuad(scene_.quads[i], static_cast<int>(i), camera_from_world, false, &setups[i])) {
       RasterizeDepth(setups[i], &view->depth_m, &view->surface_id);
     }
   }
-  // Texture access without going through cv::Mat per pixel.
-  struct Texture {
-    const uint8_t* data;
-    size_t step;
-    int max_x, max_y;
-  };
-  std::vector<Texture> textures(radiance.size());
-  for (size_t i = 0; i < radiance.size(); ++i) {
-    SLAM_CHECK(radiance[i].type() == CV_32FC3 && !radiance[i].empty());
-    textures[i] = {radiance[i].data, radiance[i].step[0], radiance[i].cols - 1, radiance[i].rows - 1};
-  }
+  const std::vector<Texture> textures = TexturesOf(radiance);
   view->radiance.create(size, CV_32FC3);
   view->cos_incidence.create(size, CV_32FC1);
   const double inv_fx = 1.0 / camera_.fx;
@@ -143,25 +240,25 @@ void Renderer::Render(const std::vector<cv::Mat>& radiance, const Rigid3d& world
         continue;
       }
       const QuadSetup& s = setups[id];
-      const Texture& t = textures[id];
       const double z = 1.0 / depth_row[col];
-      const double x = (s.sa * col + s.sb * row + s.sc) * z + s.sd;
-      const double y = (s.ta * col + s.tb * row + s.tc) * z + s.td;
-      const int x0 = std::clamp(static_cast<int>(std::floor(x)), 0, t.max_x);
-      const int y0 = std::clamp(static_cast<int>(std::floor(y)), 0, t.max_y);
-      const int x1 = std::min(x0 + 1, t.max_x), y1 = std::min(y0 + 1, t.max_y);
-      const float fx = static_cast<float>(std::clamp(x - x0, 0.0, 1.0));
-      const float fy = static_cast<float>(std::clamp(y - y0, 0.0, 1.0));
-      const float* r0 = reinterpret_cast<const float*>(t.data + y0 * t.step);
-      const float* r1 = reinterpret_cast<const float*>(t.data + y1 * t.step);
-      const float w00 = (1 - fx) * (1 - fy), w01 = fx * (1 - fy), w10 = (1 - fx) * fy, w11 = fx * fy;
-      for (int k = 0; k < 3; ++k) {
-        out[k] = r0[3 * x0 + k] * w00 + r0[3 * x1 + k] * w01 + r1[3 * x0 + k] * w10 + r1[3 * x1 + k] * w11;
-      }
+      Sample(s, textures[id], col, row, z, out);
       depth_row[col] = static_cast<float>(z);
       const double dx = (col - camera_.cx) * inv_fx;
       const double n_dot_d = s.cos_a * col + s.cos_b * row + s.cos_c;
       cos_out[col] = static_cast<float>(std::abs(n_dot_d) / std::sqrt(dx * dx + ray_base));
+    }
+  }
+  if (!has_mirrors_) return;
+  std::vector<bool> seen(scene_.quads.size(), false);
+  for (int row = 0; row < size.height; ++row) {
+    const int* id_row = view->surface_id.ptr<int>(row);
+    for (int col = 0; col < size.width; ++col) {
+      if (id_row[col] >= 0) seen[id_row[col]] = true;
+    }
+  }
+  for (size_t i = 0; i < scene_.quads.size(); ++i) {
+    if (seen[i] && scene_.quads[i].mirror_reflectance > 0.0) {
+      AddReflection(static_cast<int>(i), radiance, camera_from_world, view);
     }
   }
 }

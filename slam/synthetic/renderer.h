@@ -1,7 +1,10 @@
 // Z-buffer rasterizer of the scene's textured quads: a depth/id pass (with
 // back-face culling and near-plane clipping) followed by one perspective-
 // correct bilinear texture lookup per pixel into the session's prepared
-// radiance textures. Single-threaded and deterministic.
+// radiance textures. Mirror quads (Quad::mirror_reflectance > 0, window
+// glass) get a second pass of the scene reflected in their plane, limited to
+// their pixels and to what lies beyond them, blended in by Schlick's Fresnel
+// term. Single-threaded and deterministic.
 #pragma once
 
 #include <vector>
@@ -33,12 +36,28 @@ class Renderer {
 
  private:
   struct QuadSetup;
-  bool SetupQuad(int index, const Rigid3d& camera_from_world, QuadSetup* setup) const;
-  void RasterizeDepth(const QuadSetup& setup, cv::Mat* inv_depth, cv::Mat* ids) const;
+  // Where a mirror pass may write: the pixels of quad `mirror` in `ids`,
+  // and only fragments farther than its depth there.
+  struct MirrorMask {
+    const cv::Mat* ids = nullptr;
+    const cv::Mat* depth_m = nullptr;
+    int mirror = -1;
+  };
+  // `mirrored`: q is the mirror image of a scene quad, whose visible side
+  // faces away from the camera (winding reversed).
+  bool SetupQuad(const Quad& q, int index, const Rigid3d& camera_from_world, bool mirrored,
+                 QuadSetup* setup) const;
+  void RasterizeDepth(const QuadSetup& setup, cv::Mat* inv_depth, cv::Mat* ids,
+                      const MirrorMask* mask = nullptr) const;
+  // Blends the room reflected in mirror quad `mirror` into view->radiance.
+  void AddReflection(int mirror, const std::vector<cv::Mat>& radiance,
+                     const Rigid3d& camera_from_world, RenderedView* view) const;
 
   const Scene& scene_;
   PinholeCamera camera_;
   double near_m_;
+  bool has_mirrors_ = false;
+  mutable cv::Mat mirror_inv_depth_, mirror_ids_;  // scratch of the mirror passes
 };
 
 }  // namespace duskmap

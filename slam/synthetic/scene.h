@@ -29,6 +29,10 @@ struct Quad {
   int room = 0;                     // index into Scene::room_names
   Emission emission = Emission::kNone;
   int lamp = -1;                    // for kLamp: index into Scene::lamps
+  // Mirror reflectance at normal incidence (window glass: the Fresnel R0 of
+  // its faces); the renderer adds the mirrored room, weighted by Schlick's
+  // approximation, to what the quad shows. 0 = not a mirror.
+  double mirror_reflectance = 0.0;
   cv::Mat albedo;                   // CV_32FC3 linear BGR in [0, 1], rows along v
 
   Eigen::Vector3d normal() const { return u_axis.cross(v_axis); }

@@ -46,6 +46,38 @@ TEST(ReadGeneratorConfig, ReadsTheOptionalCeilingLights) {
   EXPECT_EQ(config.scene.living_ceiling_cd, 80.0);
 }
 
+// The optional mirrors reach the scene's quads: window glass and the bare
+// floors (not the rugs); out-of-range values are refused naming the key.
+TEST(ReadGeneratorConfig, ReadsTheOptionalMirrorReflectances) {
+  const GeneratorConfig config = ReadGeneratorConfig(WriteConfig(
+      "mirrors", R"({"scene": {"window_reflectance": 0.08, "floor_reflectance": 0.04}})"));
+  EXPECT_EQ(config.scene.window_reflectance, 0.08);
+  EXPECT_EQ(config.scene.floor_reflectance, 0.04);
+  const Scene scene = BuildApartment(config.scene);
+  int windows = 0, floors = 0, rugs_or_others = 0;
+  for (const Quad& q : scene.quads) {
+    if (q.emission == Emission::kSky) {
+      EXPECT_EQ(q.mirror_reflectance, 0.08);
+      ++windows;
+    } else if (q.mirror_reflectance == 0.04) {
+      EXPECT_EQ(q.origin_in_world.z(), 0.0);
+      ++floors;
+    } else {
+      EXPECT_EQ(q.mirror_reflectance, 0.0);
+      ++rugs_or_others;
+    }
+  }
+  EXPECT_GT(windows, 0);
+  EXPECT_EQ(floors, 8);  // one per room and the four door thresholds
+  EXPECT_GT(rugs_or_others, 0);
+  for (const Quad& q : BuildApartment(ApartmentOptions()).quads) {
+    EXPECT_EQ(q.mirror_reflectance, 0.0);  // off by default
+  }
+  const std::string error =
+      ErrorOf(WriteConfig("bad_mirror", R"({"scene": {"floor_reflectance": 0.9}})"));
+  EXPECT_NE(error.find("scene.floor_reflectance"), std::string::npos) << error;
+}
+
 TEST(ReadGeneratorConfig, UnknownKeyIsNamed) {
   const std::string error = ErrorOf(WriteConfig("unknown", R"({"camera": {"widht": 320}})"));
   EXPECT_NE(error.find("widht"), std::string::npos) << error;

@@ -105,5 +105,55 @@ TEST_F(RendererTest, EveryPixelSeesSomethingInsideTheApartment) {
   }
 }
 
+Quad FlatQuad(const Eigen::Vector3d& origin, const Eigen::Vector3d& u, const Eigen::Vector3d& v,
+              double size_m, Emission emission) {
+  Quad q;
+  q.origin_in_world = origin;
+  q.u_axis = u;
+  q.v_axis = v;
+  q.size_u_m = q.size_v_m = size_m;
+  q.emission = emission;
+  q.albedo = cv::Mat(8, 8, CV_32FC3, cv::Scalar(1, 1, 1));
+  return q;
+}
+
+// A window pane facing the camera 2 m ahead, a green wall 1 m behind the
+// camera facing the pane, and a grey wall outside, beyond the pane. The pane
+// shows what lies behind it plus, with a mirror reflectance, the green wall
+// (Fresnel at normal incidence: the reflectance itself); the outside wall is
+// never mirrored and the depth stays the pane's.
+TEST(Renderer, AMirrorPaneAddsTheReflectedRoomByItsFresnelReflectance) {
+  const Eigen::Vector3d east(1, 0, 0), west(-1, 0, 0), down(0, 0, -1);
+  Scene scene;
+  scene.room_names = {"room"};
+  scene.quads.push_back(FlatQuad({1, 2, 1}, west, down, 2.0, Emission::kSky));    // faces -y
+  scene.quads.push_back(FlatQuad({-2, -1, 2}, east, down, 4.0, Emission::kNone));  // faces +y
+  scene.quads.push_back(FlatQuad({2, 3, 2}, west, down, 4.0, Emission::kNone));    // outside
+  const std::vector<cv::Mat> radiance = {cv::Mat(8, 8, CV_32FC3, cv::Scalar(1, 1, 1)),
+                                         cv::Mat(8, 8, CV_32FC3, cv::Scalar(0, 10, 0)),
+                                         cv::Mat(8, 8, CV_32FC3, cv::Scalar(5, 5, 5))};
+  const Rigid3d world_from_camera(Eigen::Quaterniond(CameraRotationFromYawPitchRoll(M_PI / 2, 0, 0)),
+                                  Eigen::Vector3d::Zero());
+  const PinholeCamera camera = SmallCamera();
+  const int u = 80, v = 60;  // near the centre: normal incidence
+  for (double reflectance : {0.0, 0.5}) {
+    SCOPED_TRACE(reflectance);
+    scene.quads[0].mirror_reflectance = reflectance;
+    const Renderer renderer(scene, camera);
+    RenderedView view;
+    renderer.Render(radiance, world_from_camera, &view);
+    ASSERT_EQ(view.surface_id.at<int>(v, u), 0);
+    EXPECT_NEAR(view.depth_m.at<float>(v, u), 2.0f, 1e-4f);
+    const cv::Vec3f seen = view.radiance.at<cv::Vec3f>(v, u);
+    const double cos = view.cos_incidence.at<float>(v, u);
+    const double fresnel = reflectance + (1 - reflectance) * std::pow(1 - cos, 5);
+    const double expected_green = reflectance > 0 ? (1 - fresnel) * 1 + fresnel * 10 : 1.0;
+    const double expected_other = reflectance > 0 ? (1 - fresnel) * 1 : 1.0;
+    EXPECT_NEAR(seen[1], expected_green, 1e-3);
+    EXPECT_NEAR(seen[0], expected_other, 1e-3);
+    EXPECT_NEAR(seen[2], expected_other, 1e-3);
+  }
+}
+
 }  // namespace
 }  // namespace duskmap
