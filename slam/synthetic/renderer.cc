@@ -158,10 +158,8 @@ void Renderer::AddReflection(int mirror, const std::vector<cv::Mat>& radiance,
     return d - 2.0 * d.dot(n) * n;
   };
   const cv::Size size(camera_.width, camera_.height);
-  mirror_inv_depth_.create(size, CV_32FC1);
-  mirror_inv_depth_.setTo(cv::Scalar(0.0f));
-  mirror_ids_.create(size, CV_32SC1);
-  mirror_ids_.setTo(cv::Scalar(-1));
+  cv::Mat mirror_inv_depth(size, CV_32FC1, cv::Scalar(0.0f));
+  cv::Mat mirror_ids(size, CV_32SC1, cv::Scalar(-1));
   const MirrorMask mask{&view->surface_id, &view->depth_m, mirror};
   std::vector<QuadSetup> setups(scene_.quads.size());
   for (size_t i = 0; i < scene_.quads.size(); ++i) {
@@ -178,14 +176,14 @@ void Renderer::AddReflection(int mirror, const std::vector<cv::Mat>& radiance,
     image.u_axis = direction(q.u_axis);
     image.v_axis = direction(q.v_axis);
     if (SetupQuad(image, static_cast<int>(i), camera_from_world, true, &setups[i])) {
-      RasterizeDepth(setups[i], &mirror_inv_depth_, &mirror_ids_, &mask);
+      RasterizeDepth(setups[i], &mirror_inv_depth, &mirror_ids, &mask);
     }
   }
   const std::vector<Texture> textures = TexturesOf(radiance);
   const double r0 = glass.mirror_reflectance;
   for (int row = 0; row < size.height; ++row) {
-    const int* id_row = mirror_ids_.ptr<int>(row);
-    const float* inv_row = mirror_inv_depth_.ptr<float>(row);
+    const int* id_row = mirror_ids.ptr<int>(row);
+    const float* inv_row = mirror_inv_depth.ptr<float>(row);
     const float* cos_row = view->cos_incidence.ptr<float>(row);
     float* out = view->radiance.ptr<float>(row);
     for (int col = 0; col < size.width; ++col) {

@@ -57,7 +57,6 @@ class Renderer {
   PinholeCamera camera_;
   double near_m_;
   bool has_mirrors_ = false;
-  mutable cv::Mat mirror_inv_depth_, mirror_ids_;  // scratch of the mirror passes
 };
 
 }  // namespace duskmap
