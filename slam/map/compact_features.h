@@ -80,12 +80,12 @@ class CompactFeatures {
   // `words` or its stored row is not exactly row i.
   void ShareRowsWithWords(const std::vector<WordId>& row_words, const WordRowSource& words);
   bool has_shared_rows() const { return !shared_words_.empty(); }
+  size_t num_shared_rows() const { return shared_words_.size(); }
   // Forgets the keypoint responses (decoded as 0 from then on): for a map
   // loaded for localization with a matcher that does not read them (every
   // matcher but SuperGlue). Such features are not saved.
   void DropKeypointResponses();
   bool has_responses() const { return responses_.size() == keypoints_.size(); }
-  size_t num_shared_rows() const { return shared_words_.size(); }
 
   // Stored parts (the features' own rows: all of them unless rows are shared).
   const cv::Mat& codes() const { return codes_; }  // CV_8U rows, or CV_32F with kFloat32
