@@ -82,12 +82,8 @@ RunFn SetupLocalize(CLI::App& command) {
     EngineOptions options = args->config.empty() ? EngineOptions() : ReadEngineOptionsFile(args->config);
     if (args->odometry_cache >= 0) options.localization.odometry_cache_size = args->odometry_cache;
     // The words apart: the localizer imports them into its vocabulary and
-    // lets them go, so the run holds them once; node rows that are words'
-    // rows are shared with them, and keypoint responses are kept only for
-    // the matcher that reads them.
-    MapLoadOptions load;
-    load.keep_keypoint_responses = options.matcher.ReadsKeypointResponses();
-    MapAndWords loaded = LoadMapAndWords(args->map, load);
+    // lets them go, so the run holds them once.
+    MapAndWords loaded = LoadMapAndWords(args->map, options.LocalizationMapLoad());
     const Map& map = loaded.map;
     if (args->config.empty()) options.features.type = map.metadata().feature_type;
     options.Check();

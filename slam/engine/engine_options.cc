@@ -83,6 +83,13 @@ ProximityOptions EngineOptions::LocalizationProximity() const {
   return o;
 }
 
+MapLoadOptions EngineOptions::LocalizationMapLoad() const {
+  MapLoadOptions o;
+  o.share_node_rows_with_words = true;
+  o.keep_keypoint_responses = matcher.ReadsKeypointResponses();
+  return o;
+}
+
 namespace {
 
 // A DescriptorStorage option ("float32" or "uint8") under `key`; `field`

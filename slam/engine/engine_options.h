@@ -14,6 +14,7 @@
 #include "slam/features/matcher_options.h"
 #include "slam/graph/pose_graph_optimizer.h"
 #include "slam/map/compact_features.h"
+#include "slam/map/map_store.h"
 #include "slam/registration/transform_estimation.h"
 #include "slam/retrieval/loop_closure_detector.h"
 #include "slam/retrieval/proximity.h"
@@ -78,6 +79,9 @@ struct EngineOptions {
   RegistrationOptions Registration() const;
   ProximityOptions MappingProximity() const;
   ProximityOptions LocalizationProximity() const;
+  // How a localizer loads its map (LoadMapAndWords): node rows shared with
+  // the words, keypoint responses kept only for a matcher that reads them.
+  MapLoadOptions LocalizationMapLoad() const;
 };
 
 // Reads EngineOptions from JSON such as

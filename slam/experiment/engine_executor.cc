@@ -243,11 +243,8 @@ void EngineJobExecutor::Localize(const Job& job, const fs::path& job_dir) {
   const std::string map_file =
       (OutputDir(output_dir_, "map/" + job.feature + "/" + job.map.label) / kMapFile).string();
   // The words apart: the localizer imports them and lets them go, so the job
-  // holds them once; node rows that are words' rows are shared with them,
-  // and keypoint responses are kept only for the matcher that reads them.
-  MapLoadOptions load;
-  load.keep_keypoint_responses = options.matcher.ReadsKeypointResponses();
-  MapAndWords loaded = LoadMapAndWords(map_file, load);
+  // holds them once.
+  MapAndWords loaded = LoadMapAndWords(map_file, options.LocalizationMapLoad());
   FeatureCacheReader source(CacheFile(job.extractor, job.session));
   const LocalizationRun run =
       LocalizeSession(loaded.map, std::move(loaded.words), source, options);

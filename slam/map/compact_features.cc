@@ -203,10 +203,7 @@ bool CompactFeatures::RowAsStoredWord(size_t i, WordRowFormat format, uint8_t* s
     std::memcpy(stored, codes_.ptr(r), DescriptorBytes());
   } else if (Quantized()) {
     if (format != WordRowFormat::kQuantized8) return false;
-    // A kQuantized8 word: offset and step (floats), then the codes.
-    std::memcpy(stored, &row_offsets_[i], sizeof(float));
-    std::memcpy(stored + sizeof(float), &row_steps_[i], sizeof(float));
-    std::memcpy(stored + 2 * sizeof(float), codes_.ptr(r), static_cast<size_t>(codes_.cols));
+    StoreQuantizedWordRow(codes_.ptr(r), {row_offsets_[i], row_steps_[i]}, codes_.cols, stored);
   } else {
     if (format != WordRowFormat::kFloat32) return false;
     std::memcpy(stored, codes_.ptr(r), DescriptorBytes());

@@ -166,11 +166,11 @@ void Renderer::AddReflection(int mirror, const std::vector<cv::Mat>& radiance,
     const Quad& q = scene_.quads[i];
     if (static_cast<int>(i) == mirror) continue;
     // Only what is on the room's side of the glass is reflected.
-    const Eigen::Vector3d far = q.origin_in_world + q.u_axis * q.size_u_m + q.v_axis * q.size_v_m;
-    const double sides[4] = {(q.origin_in_world - p0).dot(n), (far - p0).dot(n),
-                             (q.origin_in_world + q.u_axis * q.size_u_m - p0).dot(n),
-                             (q.origin_in_world + q.v_axis * q.size_v_m - p0).dot(n)};
-    if (*std::max_element(sides, sides + 4) <= 0.0) continue;
+    bool room_side = false;
+    for (double s : {0.0, q.size_u_m}) {
+      for (double t : {0.0, q.size_v_m}) room_side |= (q.PointAt(s, t) - p0).dot(n) > 0.0;
+    }
+    if (!room_side) continue;
     Quad image = q;
     image.origin_in_world = point(q.origin_in_world);
     image.u_axis = direction(q.u_axis);

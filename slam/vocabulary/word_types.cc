@@ -168,9 +168,15 @@ bool EncodeWordRow(WordRowFormat format, const uint8_t* descriptor, int cols, ui
   if (!QuantizeRow(reinterpret_cast<const float*>(descriptor), cols, stored + kScaleBytes, &scale)) {
     return false;
   }
+  StoreQuantizedWordRow(stored + kScaleBytes, scale, cols, stored);
+  return true;
+}
+
+void StoreQuantizedWordRow(const uint8_t* codes, RowScale scale, int cols, uint8_t* stored) {
   std::memcpy(stored, &scale.offset, sizeof(float));
   std::memcpy(stored + sizeof(float), &scale.step, sizeof(float));
-  return true;
+  // EncodeWordRow quantizes straight into place: nothing to copy then.
+  if (stored + kScaleBytes != codes) std::memcpy(stored + kScaleBytes, codes, cols);
 }
 
 void DecodeWordRow(WordRowFormat format, const uint8_t* stored, int cols, uint8_t* descriptor) {

@@ -40,6 +40,9 @@ size_t QueryRowBytes(WordRowFormat format, int cols);
 // Extracted row -> stored row. False (stored row unspecified) when a float
 // row to quantize holds a non-finite value.
 bool EncodeWordRow(WordRowFormat format, const uint8_t* descriptor, int cols, uint8_t* stored);
+// A kQuantized8 stored row from 8-bit codes already made with `scale` (the
+// form node descriptors keep them in): the scale, then the `cols` codes.
+void StoreQuantizedWordRow(const uint8_t* codes, RowScale scale, int cols, uint8_t* stored);
 // Stored row -> extracted form (the quantized values for kQuantized8).
 void DecodeWordRow(WordRowFormat format, const uint8_t* stored, int cols, uint8_t* descriptor);
 // Element `dim` of a stored row as a float (one bit for kBinary).
