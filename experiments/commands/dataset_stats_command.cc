@@ -3,9 +3,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <memory>
+#include <sstream>
 
 #include "experiments/command_registry.h"
+#include "slam/core/check.h"
 #include "slam/io/synthetic_dataset.h"
 #include "slam/io/tum_dataset.h"
 #include "slam/synthetic/realism.h"
@@ -15,8 +18,22 @@ namespace {
 
 struct StatsArgs {
   std::string dataset_path;
+  std::string pairs_csv;
   RealismOptions options;
 };
+
+// One row per corresponding frame pair, for finding the poses where sessions fail to match.
+std::string PairsCsv(const RealismReport& r) {
+  std::ostringstream out;
+  out << "session_a,session_b,anchor,frame_a,frame_b,sift_keypoints_a,sift_keypoints_b,"
+         "sift_matches,sift_correct,orb_matches,orb_correct\n";
+  for (const RealismPair& p : r.pairs) {
+    out << r.sessions[p.session_a] << ',' << r.sessions[p.session_b] << ',' << p.anchor << ',' << p.frame_a << ','
+        << p.frame_b << ',' << p.sift_keypoints_a << ',' << p.sift_keypoints_b << ',' << p.sift_matches << ','
+        << p.sift_correct << ',' << p.orb_matches << ',' << p.orb_correct << '\n';
+  }
+  return out.str();
+}
 
 void PrintMatrix(const char* title, const RealismReport& r, const Eigen::MatrixXd& m) {
   std::printf("\n%s\n%-6s", title, "");
@@ -39,10 +56,17 @@ RunFn SetupStats(CLI::App& command) {
   command.add_option("--max-features", args->options.max_features, "features per frame and detector");
   command.add_option("--min-correct", args->options.min_correct_matches,
                      "correct matches a frame pair needs to count as found (default 10)");
+  command.add_option("--pairs-csv", args->pairs_csv,
+                     "also write every corresponding frame pair's keypoints, matches and correct matches here");
   return [args] {
     const bool synthetic = std::filesystem::exists(args->dataset_path + "/" + kManifestFileName);
     std::unique_ptr<DatasetReader> dataset =
         synthetic ? OpenSyntheticDataset(args->dataset_path) : OpenTumDataset(args->dataset_path);
+    std::ofstream pairs_out;  // opened first: a bad path fails before the minutes of matching
+    if (!args->pairs_csv.empty()) {
+      pairs_out.open(args->pairs_csv);
+      SLAM_THROW_IF_NOT(InputError, pairs_out.good()) << args->pairs_csv << ": cannot write";
+    }
     const RealismReport r = ComputeRealism(*dataset, args->options);
     std::printf("realism of %s: %d anchors (every %d frames of session %s), %d features, ratio %.2f, "
                 "inlier = ground-truth reprojection within %.1f px\n",
@@ -56,6 +80,12 @@ RunFn SetupStats(CLI::App& command) {
                   args->options.min_correct_matches);
     PrintMatrix(title, r, r.sift_found_fraction);
     std::printf("\ncomputed in %.1f s\n", r.wall_s);
+    if (pairs_out.is_open()) {
+      pairs_out << PairsCsv(r);
+      pairs_out.flush();
+      SLAM_THROW_IF_NOT(InputError, pairs_out.good()) << args->pairs_csv << ": cannot write";
+      std::printf("frame pairs written to %s\n", args->pairs_csv.c_str());
+    }
     return 0;
   };
 }

@@ -22,6 +22,7 @@ struct FrameFeatureSet {
 
 struct AnchorFrame {
   bool present = false;
+  int frame_index = 0;
   Rigid3d world_from_camera;
   PinholeCamera camera;
   FrameFeatureSet sift, orb;
@@ -113,6 +114,7 @@ std::vector<AnchorFrame> CollectAnchorFrames(const RealismOptions& o, SessionRea
     cv::Mat gray;
     cv::cvtColor(best[i]->bgr, gray, cv::COLOR_BGR2GRAY);
     out[i].present = true;
+    out[i].frame_index = static_cast<int>(best[i]->frame_index);
     out[i].world_from_camera = *best[i]->world_from_camera;
     out[i].camera = best[i]->camera;
     out[i].sift = Extract(*sift, gray, best[i]->depth_m, best[i]->camera);
@@ -181,6 +183,19 @@ RealismReport ComputeRealism(const DatasetReader& dataset, const RealismOptions&
         orb_ratios.push_back(o.matches_with_depth > 0 ? static_cast<double>(o.inliers) / o.matches_with_depth : 0.0);
         sift_inliers.push_back(s.inliers);
         if (s.inliers >= options.min_correct_matches) ++found;
+        RealismPair pair;
+        pair.session_a = a;
+        pair.session_b = b;
+        pair.anchor = static_cast<int>(k);
+        pair.frame_a = fa.frame_index;
+        pair.frame_b = fb.frame_index;
+        pair.sift_keypoints_a = static_cast<int>(fa.sift.keypoints.size());
+        pair.sift_keypoints_b = static_cast<int>(fb.sift.keypoints.size());
+        pair.sift_matches = s.matches_with_depth;
+        pair.sift_correct = s.inliers;
+        pair.orb_matches = o.matches_with_depth;
+        pair.orb_correct = o.inliers;
+        report.pairs.push_back(pair);
       }
       if (sift_ratios.empty()) continue;
       report.sift_inlier_ratio(a, b) = report.sift_inlier_ratio(b, a) = Median(sift_ratios);

@@ -34,6 +34,21 @@ struct RealismOptions {
   void Check() const;
 };
 
+// One corresponding frame pair: an anchor seen in two sessions.
+struct RealismPair {
+  int session_a = 0;         // index into RealismReport::sessions, session_a < session_b
+  int session_b = 0;
+  int anchor = 0;            // anchor index (frame anchor * frame_step of the first session)
+  int frame_a = 0;           // frame index standing for the anchor in each session
+  int frame_b = 0;
+  int sift_keypoints_a = 0;  // SIFT keypoints detected in each frame
+  int sift_keypoints_b = 0;
+  int sift_matches = 0;      // ratio-test matches whose first keypoint has depth
+  int sift_correct = 0;      // of those, confirmed by ground truth
+  int orb_matches = 0;
+  int orb_correct = 0;
+};
+
 struct RealismReport {
   std::vector<std::string> sessions;     // names, dataset order
   std::vector<std::string> clock_times;  // "" when unknown
@@ -43,6 +58,7 @@ struct RealismReport {
   Eigen::MatrixXd orb_inlier_ratio;
   Eigen::MatrixXd sift_found_fraction;   // fraction of pairs with >= min_correct_matches inliers
   Eigen::MatrixXd sift_median_inliers;
+  std::vector<RealismPair> pairs;        // every frame pair behind the matrices, by session pair then anchor
   double wall_s = 0.0;
 };
 

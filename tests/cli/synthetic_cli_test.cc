@@ -115,4 +115,30 @@ TEST(DatasetStatsCli, PrintsTheMatricesAndRejectsATruncatedSequence) {
   EXPECT_NE(bad.output.find(victim.filename().string()), std::string::npos) << bad.output;
 }
 
+// --pairs-csv lists every corresponding frame pair behind the matrices; a
+// path that cannot be written fails at once, naming it, before any matching.
+TEST(DatasetStatsCli, WritesTheFramePairsAndRefusesAnUnwritablePath) {
+  const fs::path root = TempRoot("pairs");
+  const std::string out = (root / "data").string();
+  ASSERT_EQ(RunDuskmap("generate --config " + SmallConfig(root) + " --output " + out).exit_code, 0);
+  const std::string csv = (root / "pairs.csv").string();
+  const Result ok = RunDuskmap("dataset-stats --dataset " + out + " --frame-step 1 --max-features 300 --pairs-csv " + csv);
+  ASSERT_EQ(ok.exit_code, 0) << ok.output;
+  std::ifstream in(csv);
+  std::string header, line;
+  std::getline(in, header);
+  EXPECT_EQ(header.rfind("session_a,session_b,anchor,frame_a,frame_b,", 0), 0u) << header;
+  int rows = 0;
+  while (std::getline(in, line)) {
+    EXPECT_EQ(line.rfind("1,F,", 0), 0u) << line;  // the one pair of sessions
+    ++rows;
+  }
+  EXPECT_EQ(rows, 3);  // three anchors, each seen in both sessions
+  const std::string unwritable = (root / "no_such_folder" / "pairs.csv").string();
+  const Result bad = RunDuskmap("dataset-stats --dataset " + out + " --pairs-csv " + unwritable);
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_EQ(CountLines(bad.output), 1) << bad.output;
+  EXPECT_NE(bad.output.find(unwritable), std::string::npos) << bad.output;
+}
+
 }  // namespace
