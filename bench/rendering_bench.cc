@@ -79,15 +79,24 @@ void BM_CaptureAndWriteFrame640x480(benchmark::State& state) {
 }
 BENCHMARK(BM_CaptureAndWriteFrame640x480)->Unit(benchmark::kMillisecond);
 
+// Argument: 1 = the default scene (materials with relief), 0 = every surface
+// flat (what the relief costs: the light maps' irradiance vectors and the
+// per-texel shading normal).
 void BM_PrepareLighting(benchmark::State& state) {
   Fixture& f = Shared();
+  static const Scene flat = [] {
+    ApartmentOptions options;
+    options.relief_scale = 0.0;
+    return BuildApartment(options);
+  }();
+  const Scene& scene = state.range(0) ? f.scene : flat;
   for (auto _ : state) {
-    const SessionLighting lighting = ComputeSessionLighting(f.config.lighting, f.scene, 16.8);
-    std::vector<cv::Mat> radiance = PrepareRadiance(f.scene, lighting, f.config.lighting);
+    const SessionLighting lighting = ComputeSessionLighting(f.config.lighting, scene, 16.8);
+    std::vector<cv::Mat> radiance = PrepareRadiance(scene, lighting, f.config.lighting);
     benchmark::DoNotOptimize(radiance.data());
   }
 }
-BENCHMARK(BM_PrepareLighting)->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK(BM_PrepareLighting)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->Iterations(2);
 
 }  // namespace
 }  // namespace duskmap

@@ -288,6 +288,8 @@ void ApartmentOptions::Check() const {
       << "scene.window_reflectance must be in [0, 0.5], got " << window_reflectance;
   SLAM_THROW_IF_NOT(ConfigError, floor_reflectance >= 0.0 && floor_reflectance <= 0.5)
       << "scene.floor_reflectance must be in [0, 0.5], got " << floor_reflectance;
+  SLAM_THROW_IF_NOT(ConfigError, relief_scale >= 0.0 && relief_scale <= 10.0)
+      << "scene.relief_scale must be in [0, 10], got " << relief_scale;
   const bool time_ok = living_lamp_on_from.size() == 5 && living_lamp_on_from[2] == ':';
   SLAM_THROW_IF_NOT(ConfigError, time_ok)
       << "scene.living_lamp_on_from must be \"HH:MM\", got \"" << living_lamp_on_from << "\"";
@@ -298,7 +300,7 @@ Scene BuildApartment(const ApartmentOptions& options) {
   SceneBuilder builder(options.seed,
                       options.textures_dir.empty() ? std::vector<cv::Mat>()
                                                    : LoadUserTextures(options.textures_dir),
-                      options.wall_height_m);
+                      options.wall_height_m, options.relief_scale);
   Scene& s = builder.scene();
   s.room_names = {"living room", "kitchen", "corridor", "bedroom"};
   AddLivingRoom(builder, options);

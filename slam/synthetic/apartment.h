@@ -31,6 +31,11 @@ struct ApartmentOptions {
   // incidence, e.g. 0.04), growing towards grazing views; rugs do not
   // reflect. 0 = matte floors.
   double floor_reflectance = 0.0;
+  // Multiplies the materials' relief heights (plaster, grain, grout, weave,
+  // fins, folds, panels; textures.cc), which the light shows by the direction
+  // it comes from (relief.h). 1 = the materials' measured-plausible heights;
+  // 0 = every surface flat (the scene before 2026-12-02).
+  double relief_scale = 1.0;
 
   void Check() const;
 };

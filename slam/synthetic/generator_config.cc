@@ -17,6 +17,7 @@ void ReadScene(JsonFields f, ApartmentOptions* o) {
   f.Read("living_ceiling_cd", &o->living_ceiling_cd);
   f.Read("window_reflectance", &o->window_reflectance);
   f.Read("floor_reflectance", &o->floor_reflectance);
+  f.Read("relief_scale", &o->relief_scale);
   f.RejectUnknown();
 }
 

@@ -40,10 +40,13 @@ bool IsLampOn(const Lamp& lamp, double clock_time_h) {
   return clock_time_h >= ParseClockTime(lamp.on_from, "lamp '" + lamp.name + "'.on_from");
 }
 
-// Projected solid angle of a polygon seen from `point` with unit `normal`,
-// after clipping the polygon to the receiver's upper hemisphere.
-double ProjectedSolidAngle(const std::array<Eigen::Vector3d, 4>& corners, const Eigen::Vector3d& point,
-                           const Eigen::Vector3d& normal) {
+// Irradiance vector of a polygon of unit radiance seen from `point`, after
+// clipping it to the upper hemisphere of the unit `normal` (Lambert's formula:
+// half the sum over the edges of the edge angle times the unit normal of the
+// plane through the edge and the point). Its dot product with `normal` is the
+// projected solid angle; with a slightly tilted normal, the irradiance there.
+Eigen::Vector3d PolygonIrradianceVector(const std::array<Eigen::Vector3d, 4>& corners,
+                                        const Eigen::Vector3d& point, const Eigen::Vector3d& normal) {
   Eigen::Vector3d clipped[8];
   int count = 0;
   for (int i = 0; i < 4; ++i) {
@@ -52,16 +55,17 @@ double ProjectedSolidAngle(const std::array<Eigen::Vector3d, 4>& corners, const 
     if (da >= 0.0) clipped[count++] = a;
     if ((da >= 0.0) != (db >= 0.0)) clipped[count++] = a + (b - a) * (da / (da - db));
   }
-  if (count < 3) return 0.0;
-  double sum = 0.0;
+  if (count < 3) return Eigen::Vector3d::Zero();
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (int i = 0; i < count; ++i) {
     const Eigen::Vector3d a = clipped[i].normalized(), b = clipped[(i + 1) % count].normalized();
     const Eigen::Vector3d cross = a.cross(b);
     const double cross_norm = cross.norm();
     if (cross_norm < 1e-12) continue;
-    sum += std::atan2(cross_norm, a.dot(b)) * normal.dot(cross / cross_norm);
+    sum += std::atan2(cross_norm, a.dot(b)) * (cross / cross_norm);
   }
-  return 0.5 * std::abs(sum);
+  // The winding decides the sign; the light arrives from the receiver's side.
+  return 0.5 * (normal.dot(sum) >= 0.0 ? sum : -sum);
 }
 
 std::array<Eigen::Vector3d, 4> Corners(const Quad& q) {
@@ -222,10 +226,13 @@ IrradianceParts DirectIrradiance(const Scene& scene, const SessionLighting& ligh
   for (const Quad& q : scene.quads) {
     if (q.emission != Emission::kSky || q.room != room) continue;
     if (q.normal().dot(point - q.origin_in_world) <= 0.0) continue;  // behind the window
-    parts.sky += Scale(lighting.sky_nits_bgr, ProjectedSolidAngle(Corners(q), point, normal));
+    const Eigen::Vector3d window_vector = PolygonIrradianceVector(Corners(q), point, normal);
+    parts.sky += Scale(lighting.sky_nits_bgr, normal.dot(window_vector));
+    parts.direction_weighted += Luminance(lighting.sky_nits_bgr) * window_vector;
     if (sun_up && Luminance(parts.sun) == 0.0f &&
         SunThroughWindow(scene, occluders, q, point, to_sun, receiver_quad)) {
       parts.sun = Scale(lighting.sun_normal_lux_bgr, cos_sun);
+      parts.direction_weighted += Luminance(lighting.sun_normal_lux_bgr) * to_sun;
     }
   }
   for (size_t i = 0; i < scene.lamps.size(); ++i) {
@@ -239,6 +246,7 @@ IrradianceParts DirectIrradiance(const Scene& scene, const SessionLighting& ligh
     // Hard shadows from a point lamp: furniture, objects and walls between.
     if (Occluded(scene, occluders, point, to_lamp / r, r, receiver_quad)) continue;
     parts.lamps += Scale(lighting.lamp_color_bgr, lamp.intensity_cd * cos_lamp / r2);
+    parts.direction_weighted += (lamp.intensity_cd / r2) * Luminance(lighting.lamp_color_bgr) * (to_lamp / r);
   }
   return parts;
 }
@@ -246,6 +254,9 @@ IrradianceParts DirectIrradiance(const Scene& scene, const SessionLighting& ligh
 struct LightMap {
   int nodes_u = 0, nodes_v = 0;
   std::vector<cv::Vec3f> lux;  // row-major, nodes_v rows
+  // The direct light's irradiance vector (luminance) in the quad's frame
+  // (along u, along v, along the normal): what a relief slope tilts into.
+  std::vector<cv::Vec3f> vector_uvn;
 };
 
 LightMap ComputeLightMap(const Scene& scene, const SessionLighting& lighting,
@@ -254,25 +265,46 @@ LightMap ComputeLightMap(const Scene& scene, const SessionLighting& lighting,
   LightMap map;
   map.nodes_u = std::max(2, static_cast<int>(std::ceil(q.size_u_m / texel_m)) + 1);
   map.nodes_v = std::max(2, static_cast<int>(std::ceil(q.size_v_m / texel_m)) + 1);
-  map.lux.resize(static_cast<size_t>(map.nodes_u) * map.nodes_v);
+  const size_t nodes = static_cast<size_t>(map.nodes_u) * map.nodes_v;
+  map.lux.resize(nodes);
+  if (!q.relief_slope.empty()) map.vector_uvn.resize(nodes);
   const Eigen::Vector3d n = q.normal();
   for (int j = 0; j < map.nodes_v; ++j) {
     for (int i = 0; i < map.nodes_u; ++i) {
       const Eigen::Vector3d p = q.PointAt(q.size_u_m * i / (map.nodes_u - 1), q.size_v_m * j / (map.nodes_v - 1)) + 1e-3 * n;
-      map.lux[static_cast<size_t>(j) * map.nodes_u + i] =
-          DirectIrradiance(scene, lighting, occluders, p, n, q.room, quad_index).total();
+      const IrradianceParts parts = DirectIrradiance(scene, lighting, occluders, p, n, q.room, quad_index);
+      const size_t k = static_cast<size_t>(j) * map.nodes_u + i;
+      map.lux[k] = parts.total();
+      if (!map.vector_uvn.empty()) {
+        const Eigen::Vector3d& d = parts.direction_weighted;
+        map.vector_uvn[k] = cv::Vec3f(static_cast<float>(d.dot(q.u_axis)), static_cast<float>(d.dot(q.v_axis)),
+                                      static_cast<float>(d.dot(n)));
+      }
     }
   }
   return map;
 }
 
-cv::Vec3f SampleLightMap(const LightMap& map, double fu, double fv) {
+// Bilinear lookup of a light-map channel at fractional quad coordinates.
+cv::Vec3f SampleNodes(const LightMap& map, const std::vector<cv::Vec3f>& values, double fu, double fv) {
   const double x = fu * (map.nodes_u - 1), y = fv * (map.nodes_v - 1);
   const int i = std::min(static_cast<int>(x), map.nodes_u - 2), j = std::min(static_cast<int>(y), map.nodes_v - 2);
   const float a = static_cast<float>(x - i), b = static_cast<float>(y - j);
-  const cv::Vec3f* row0 = &map.lux[static_cast<size_t>(j) * map.nodes_u];
+  const cv::Vec3f* row0 = &values[static_cast<size_t>(j) * map.nodes_u];
   const cv::Vec3f* row1 = row0 + map.nodes_u;
   return (row0[i] * (1 - a) + row0[i + 1] * a) * (1 - b) + (row1[i] * (1 - a) + row1[i + 1] * a) * b;
+}
+
+// How much of the direct light a texel whose relief tilts its normal by the
+// slopes (dh/ds, dh/dt) receives, relative to the flat surface: the tilted
+// normal n - s u - t v (normalised) against the irradiance vector, clamped
+// at zero where the slope turns away from the light. 1 without light.
+float ReliefFactor(const cv::Vec3f& vector_uvn, const cv::Vec2f& slope) {
+  constexpr float kMinNormalComponent = 1e-6f;
+  if (vector_uvn[2] <= kMinNormalComponent) return 1.0f;
+  const float tilted = (vector_uvn[2] - slope[0] * vector_uvn[0] - slope[1] * vector_uvn[1]) /
+                       std::sqrt(1.0f + slope[0] * slope[0] + slope[1] * slope[1]);
+  return std::max(0.0f, tilted) / vector_uvn[2];
 }
 
 // Per-room ambient irradiance: a fraction of the area-weighted mean direct
@@ -327,8 +359,10 @@ std::vector<cv::Mat> PrepareRadiance(const Scene& scene, const SessionLighting& 
     const Quad& q = scene.quads[i];
     cv::Mat out(q.albedo.size(), CV_32FC3);
     const bool glowing = q.emission == Emission::kLamp && lighting.lamp_on[q.lamp];
+    const bool relief = !maps[i].vector_uvn.empty();
     for (int r = 0; r < out.rows; ++r) {
       const cv::Vec3f* a = q.albedo.ptr<cv::Vec3f>(r);
+      const cv::Vec2f* slope = relief ? q.relief_slope.ptr<cv::Vec2f>(r) : nullptr;
       cv::Vec3f* o = out.ptr<cv::Vec3f>(r);
       const double fv = (r + 0.5) / out.rows;
       for (int c = 0; c < out.cols; ++c) {
@@ -338,8 +372,10 @@ std::vector<cv::Mat> PrepareRadiance(const Scene& scene, const SessionLighting& 
           o[c] = a[c].mul(lighting.lamp_color_bgr) *
                  static_cast<float>(scene.lamps[q.lamp].intensity_cd * options.lamp_shade_nits_per_cd);
         } else {
-          const cv::Vec3f e = SampleLightMap(maps[i], (c + 0.5) / out.cols, fv) + ambient[q.room];
-          o[c] = a[c].mul(e) * inv_pi;
+          const double fu = (c + 0.5) / out.cols;
+          cv::Vec3f direct = SampleNodes(maps[i], maps[i].lux, fu, fv);
+          if (relief) direct *= ReliefFactor(SampleNodes(maps[i], maps[i].vector_uvn, fu, fv), slope[c]);
+          o[c] = a[c].mul(direct + ambient[q.room]) * inv_pi;
         }
       }
     }

@@ -60,6 +60,12 @@ struct IrradianceParts {
   cv::Vec3f sun = cv::Vec3f(0, 0, 0);
   cv::Vec3f sky = cv::Vec3f(0, 0, 0);
   cv::Vec3f lamps = cv::Vec3f(0, 0, 0);
+  // Irradiance vector of all three in luminance (lux): the sum over the
+  // sources of their luminance times the unit direction the light arrives
+  // from (for a window, the sky's radiance times its polygon's vector). Its
+  // component along the normal is Luminance(total()); tilting the normal
+  // (a relief slope) weighs the light by where it comes from.
+  Eigen::Vector3d direction_weighted = Eigen::Vector3d::Zero();
   cv::Vec3f total() const { return sun + sky + lamps; }
 };
 IrradianceParts ComputeDirectIrradiance(const Scene& scene, const SessionLighting& lighting,

@@ -34,6 +34,11 @@ struct Quad {
   // approximation, to what the quad shows. 0 = not a mirror.
   double mirror_reflectance = 0.0;
   cv::Mat albedo;                   // CV_32FC3 linear BGR in [0, 1], rows along v
+  // Surface relief as slopes of its height per texel, (dh/ds, dh/dt) along
+  // u and v (CV_32FC2, metres per metre, the albedo's size), or empty for a
+  // flat surface. It tilts the shading normal to n - dh/ds u - dh/dt v, so
+  // the relief shows by where the light comes from (lighting.h).
+  cv::Mat relief_slope;
 
   Eigen::Vector3d normal() const { return u_axis.cross(v_axis); }
   Eigen::Vector3d PointAt(double s_m, double t_m) const {

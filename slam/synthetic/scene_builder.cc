@@ -8,6 +8,7 @@
 
 #include "slam/core/check.h"
 #include "slam/core/random.h"
+#include "slam/synthetic/relief.h"
 
 namespace duskmap {
 namespace {
@@ -48,8 +49,10 @@ WallOpening WindowOpening(double lo, double hi, double z_bottom, double z_top) {
   return o;
 }
 
-SceneBuilder::SceneBuilder(uint64_t seed, std::vector<cv::Mat> user_images, double wall_height_m)
-    : seed_(seed), user_images_(std::move(user_images)), wall_height_m_(wall_height_m) {}
+SceneBuilder::SceneBuilder(uint64_t seed, std::vector<cv::Mat> user_images, double wall_height_m,
+                           double relief_scale)
+    : seed_(seed), user_images_(std::move(user_images)), wall_height_m_(wall_height_m),
+      relief_scale_(relief_scale) {}
 
 int SceneBuilder::AddQuad(const Eigen::Vector3d& origin, const Eigen::Vector3d& u,
                           const Eigen::Vector3d& v, double su, double sv, int room,
@@ -70,10 +73,18 @@ int SceneBuilder::AddQuad(const Eigen::Vector3d& origin, const Eigen::Vector3d& 
   request.size_v_m = sv;
   request.base_bgr = color;
   request.seed = DeriveSeed(seed_, scene_.quads.size());
+  request.relief_scale = relief_scale_;
   // Texture columns run along u and rows along v, and u x v is the visible
   // side: seen from the front, u points to the viewer's left. Mirroring the
-  // texture makes pictures, posters and text read the right way round.
-  cv::flip(MakeTexture(request, user_images_), q.albedo, 1);
+  // texture makes pictures, posters and text read the right way round; the
+  // relief is mirrored with it before its slopes are taken along u and v.
+  const SurfaceTexture texture = MakeTexture(request, user_images_);
+  cv::flip(texture.albedo, q.albedo, 1);
+  if (!texture.height_m.empty()) {
+    cv::Mat height_m;
+    cv::flip(texture.height_m, height_m, 1);
+    q.relief_slope = ReliefSlopes(height_m, su / height_m.cols, sv / height_m.rows);
+  }
   scene_.quads.push_back(std::move(q));
   return static_cast<int>(scene_.quads.size()) - 1;
 }

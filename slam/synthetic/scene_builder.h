@@ -40,7 +40,9 @@ struct WallFinish {
 
 class SceneBuilder {
  public:
-  SceneBuilder(uint64_t seed, std::vector<cv::Mat> user_images, double wall_height_m);
+  // relief_scale multiplies every material's relief heights (relief.h); 0 = flat.
+  SceneBuilder(uint64_t seed, std::vector<cv::Mat> user_images, double wall_height_m,
+               double relief_scale = 0.0);
 
   Scene& scene() { return scene_; }
   double wall_height_m() const { return wall_height_m_; }
@@ -136,6 +138,7 @@ class SceneBuilder {
   uint64_t seed_;
   std::vector<cv::Mat> user_images_;
   double wall_height_m_;
+  double relief_scale_;
   Scene scene_;
   uint64_t item_counter_ = 0;  // seeds the sizes and colours of generated items
 };

@@ -9,23 +9,13 @@
 
 #include "slam/core/check.h"
 #include "slam/core/random.h"
+#include "slam/synthetic/relief.h"
 
 namespace duskmap {
 namespace {
 
 int Texels(double size_m, double texel_m) {
   return std::max(2, static_cast<int>(std::lround(size_m / texel_m)));
-}
-
-// Smooth value noise in [-1, 1]: a coarse random grid upsampled bicubically.
-cv::Mat ValueNoise(cv::Size size, double cell_texels, cv::RNG& rng) {
-  const int gw = std::max(2, static_cast<int>(size.width / cell_texels) + 2);
-  const int gh = std::max(2, static_cast<int>(size.height / cell_texels) + 2);
-  cv::Mat grid(gh, gw, CV_32F);
-  rng.fill(grid, cv::RNG::UNIFORM, -1.0, 1.0);
-  cv::Mat noise;
-  cv::resize(grid, noise, size, 0, 0, cv::INTER_CUBIC);
-  return noise;
 }
 
 cv::Vec3f RandomColor(cv::RNG& rng, float lo, float hi) {
@@ -106,7 +96,7 @@ cv::Mat UserPicture(cv::Size size, const std::vector<cv::Mat>& user_images, cv::
   return as_float * 0.9;
 }
 
-cv::Mat MakeBooks(cv::Size size, cv::RNG& rng) {
+cv::Mat MakeBooks(cv::Size size, cv::RNG& rng, ReliefCanvas& relief) {
   cv::Mat out(size, CV_32FC3, cv::Scalar(0.12, 0.16, 0.22));  // shelf wood
   const int shelf_rows = std::max(1, static_cast<int>(std::lround(size.height / 70.0)));
   const int shelf_h = size.height / shelf_rows;
@@ -118,6 +108,12 @@ cv::Mat MakeBooks(cv::Size size, cv::RNG& rng) {
       const int h = static_cast<int>((bottom - top) * rng.uniform(0.6, 1.0));
       const cv::Vec3f color = RandomColor(rng, 0.03f, 0.7f);
       cv::rectangle(out, cv::Rect(x, bottom - h, w, h), ToScalar(color), cv::FILLED);
+      if (relief.enabled()) {  // a rounded spine, 10 mm proud at its middle
+        for (int k = 0; k < w; ++k) {
+          const double across = (k + 0.5) / w * 2.0 - 1.0;
+          relief.AddRect(cv::Rect(x + k, bottom - h, 1, h), 0.010 * std::sqrt(1.0 - across * across));
+        }
+      }
       cv::line(out, cv::Point(x + 1, bottom - h * 3 / 4), cv::Point(x + w - 2, bottom - h * 3 / 4),
                ToScalar(color * 0.3f), 1);
       if (rng.uniform(0, 3) == 0) {
@@ -157,7 +153,7 @@ cv::Mat MakeWindow(cv::Size size, cv::RNG& rng) {
   return out;
 }
 
-cv::Mat MakeCabinet(cv::Size size, const cv::Vec3f& base, cv::RNG& rng) {
+cv::Mat MakeCabinet(cv::Size size, const cv::Vec3f& base, cv::RNG& rng, ReliefCanvas& relief) {
   cv::Mat out = Modulated(size, base, ValueNoise(size, 6.0, rng), 0.05f);
   // Doors about 0.4-0.6 m wide (texels of 4 mm): split the width evenly.
   const int doors = std::max(1, static_cast<int>(std::lround(size.width / 125.0)));
@@ -169,23 +165,35 @@ cv::Mat MakeCabinet(cv::Size size, const cv::Vec3f& base, cv::RNG& rng) {
   for (int d = 0; d < doors; ++d) {
     const int x0 = d * door_w;
     cv::rectangle(out, cv::Rect(x0, 0, door_w, size.height), edge, 2);
+    relief.GrooveColumn(x0, 0.006);  // the gap between doors
     if (drawers) {
       cv::line(out, {x0, drawer_h}, {x0 + door_w, drawer_h}, edge, 2);
       cv::rectangle(out, cv::Rect(x0 + door_w / 2 - 12, drawer_h / 2 - 2, 24, 5), metal, cv::FILLED);
+      relief.GrooveRow(drawer_h, 0.006);
+      relief.AddRect(cv::Rect(x0 + door_w / 2 - 12, drawer_h / 2 - 2, 24, 5), 0.02);
     }
     const int m = std::max(4, door_w / 8);
     cv::rectangle(out, cv::Rect(x0 + m, drawer_h + m, door_w - 2 * m, size.height - drawer_h - 2 * m), bevel, 1);
     cv::rectangle(out, cv::Rect(x0 + m + 2, drawer_h + m + 2, door_w - 2 * m - 4, size.height - drawer_h - 2 * m - 4), edge, 1);
+    // The panel sits 10 mm back, with a 2-texel bevel down to it.
+    relief.AddRect(cv::Rect(x0 + m, drawer_h + m, door_w - 2 * m, size.height - drawer_h - 2 * m), -0.005);
+    relief.AddRect(cv::Rect(x0 + m + 2, drawer_h + m + 2, door_w - 2 * m - 4, size.height - drawer_h - 2 * m - 4), -0.005);
     const int hx = d % 2 ? x0 + m / 2 + 1 : x0 + door_w - m / 2 - 3;
     const int hy = drawer_h + (size.height - drawer_h) / 3;
     cv::rectangle(out, cv::Rect(hx, hy, 3, std::min(30, std::max(6, size.height / 8))), metal, cv::FILLED);
+    relief.AddRect(cv::Rect(hx, hy, 3, std::min(30, std::max(6, size.height / 8))), 0.02);
   }
   return out;
 }
 
-cv::Mat MakeRadiator(cv::Size size, const cv::Vec3f& base, cv::RNG& rng) {
+cv::Mat MakeRadiator(cv::Size size, const cv::Vec3f& base, cv::RNG& rng, ReliefCanvas& relief) {
   cv::Mat out = Modulated(size, base, ValueNoise(size, 8.0, rng), 0.03f);
   const int fin = 12;
+  // Fins: a 25 mm deep corrugation whose troughs are the dark lines below.
+  for (int x = 0; x < size.width && relief.enabled(); ++x) {
+    const double phase = std::sin(3.14159265358979 * (x - fin / 2) / fin);
+    relief.AddRect(cv::Rect(x, 0, 1, size.height), 0.025 * phase * phase);
+  }
   for (int x = fin / 2; x < size.width; x += fin) {
     cv::line(out, {x, 3}, {x, size.height - 4}, ToScalar(base * 0.55f), 2);
     cv::line(out, {x + 3, 3}, {x + 3, size.height - 4}, ToScalar(base * 1.15f), 1);
@@ -195,7 +203,7 @@ cv::Mat MakeRadiator(cv::Size size, const cv::Vec3f& base, cv::RNG& rng) {
   return out;
 }
 
-cv::Mat MakeCurtain(cv::Size size, const cv::Vec3f& base, cv::RNG& rng) {
+cv::Mat MakeCurtain(cv::Size size, const cv::Vec3f& base, cv::RNG& rng, ReliefCanvas& relief) {
   cv::Mat out = Modulated(size, base, ValueNoise(size, 1.5, rng), 0.08f);
   const cv::Vec3f accent = RandomColor(rng, 0.05f, 0.7f);
   if (rng.uniform(0, 2)) {  // stripes
@@ -212,10 +220,12 @@ cv::Mat MakeCurtain(cv::Size size, const cv::Vec3f& base, cv::RNG& rng) {
       cv::circle(out, p + cv::Point(r, -r), r / 2 + 1, ToScalar(accent * 0.6f), cv::FILLED, cv::LINE_AA);
     }
   }
-  // Folds: a slow shading across the width.
+  // Folds: a slow shading across the width (the hollows see less of the
+  // room) and, as relief, 50 mm waves of the same period.
   for (int c = 0; c < size.width; ++c) {
     const float fold = 0.82f + 0.18f * static_cast<float>(std::sin(c * 2.0 * 3.14159265 / 35.0));
     for (int r = 0; r < size.height; ++r) out.at<cv::Vec3f>(r, c) *= fold;
+    relief.AddRect(cv::Rect(c, 0, 1, size.height), 0.05 * std::sin(c * 2.0 * 3.14159265 / 35.0));
   }
   return out;
 }
@@ -323,6 +333,16 @@ cv::Mat MakeFoliage(cv::Size size, cv::RNG& rng) {
 
 }  // namespace
 
+cv::Mat ValueNoise(cv::Size size, double cell_texels, cv::RNG& rng) {
+  const int gw = std::max(2, static_cast<int>(size.width / cell_texels) + 2);
+  const int gh = std::max(2, static_cast<int>(size.height / cell_texels) + 2);
+  cv::Mat grid(gh, gw, CV_32F);
+  rng.fill(grid, cv::RNG::UNIFORM, -1.0, 1.0);
+  cv::Mat noise;
+  cv::resize(grid, noise, size, 0, 0, cv::INTER_CUBIC);
+  return noise;
+}
+
 double TexelSizeM(TextureKind kind) {
   switch (kind) {
     case TextureKind::kPaint: return 0.02;
@@ -352,9 +372,12 @@ double TexelSizeM(TextureKind kind) {
   return 0.02;
 }
 
-cv::Mat MakeTexture(const TextureRequest& request, const std::vector<cv::Mat>& user_images) {
-  const double texel = TexelSizeM(request.kind);
-  const cv::Size size(Texels(request.size_u_m, texel), Texels(request.size_v_m, texel));
+namespace {
+
+// The albedo of a request; draws the relief that follows the albedo's own
+// structure (joints, grout, spines, panels, fins, folds) into `relief`.
+cv::Mat MakeAlbedo(const TextureRequest& request, const std::vector<cv::Mat>& user_images, cv::Size size,
+                   ReliefCanvas& relief) {
   cv::RNG rng(request.seed | 1);
   const cv::Vec3f base = request.base_bgr;
   switch (request.kind) {
@@ -379,6 +402,7 @@ cv::Mat MakeTexture(const TextureRequest& request, const std::vector<cv::Mat>& u
           const bool joint = (c % plank == 0) || (floor && (r + joint_offset) % 150 == 0);
           const float g = 1.0f + 0.25f * grain.at<float>(r, c) + 0.08f * fine.at<float>(r, c);
           o[c] = joint ? base * 0.35f : base * tone * g;
+          if (joint) relief.AddRect(cv::Rect(c, r, 1, 1), -0.003);  // the joints' bevelled grooves
         }
       }
       return out;
@@ -388,6 +412,8 @@ cv::Mat MakeTexture(const TextureRequest& request, const std::vector<cv::Mat>& u
       const int tile = 19;
       for (int x = 0; x < size.width; x += tile) cv::line(out, {x, 0}, {x, size.height}, cv::Scalar::all(0.35), 1);
       for (int y = 0; y < size.height; y += tile) cv::line(out, {0, y}, {size.width, y}, cv::Scalar::all(0.35), 1);
+      for (int x = 0; x < size.width; x += tile) relief.GrooveColumn(x, 0.003);  // grout, 3 mm back
+      for (int y = 0; y < size.height; y += tile) relief.GrooveRow(y, 0.003);
       return out;
     }
     case TextureKind::kFabric:
@@ -403,7 +429,7 @@ cv::Mat MakeTexture(const TextureRequest& request, const std::vector<cv::Mat>& u
       }
       return out;
     }
-    case TextureKind::kBooks: return MakeBooks(size, rng);
+    case TextureKind::kBooks: return MakeBooks(size, rng, relief);
     case TextureKind::kPicture:
     case TextureKind::kPoster:
     case TextureKind::kDocking: {
@@ -423,15 +449,19 @@ cv::Mat MakeTexture(const TextureRequest& request, const std::vector<cv::Mat>& u
       const int m = size.width / 8;
       cv::rectangle(out, cv::Rect(m, m, size.width - 2 * m, size.height / 2 - m), ToScalar(base * 0.7f), 2);
       cv::rectangle(out, cv::Rect(m, size.height / 2 + m / 2, size.width - 2 * m, size.height / 2 - 2 * m), ToScalar(base * 0.7f), 2);
+      relief.AddRect(cv::Rect(m, m, size.width - 2 * m, size.height / 2 - m), -0.004);  // recessed panels
+      relief.AddRect(cv::Rect(m + 1, m + 1, size.width - 2 * m - 2, size.height / 2 - m - 2), -0.004);
+      relief.AddRect(cv::Rect(m, size.height / 2 + m / 2, size.width - 2 * m, size.height / 2 - 2 * m), -0.004);
+      relief.AddRect(cv::Rect(m + 1, size.height / 2 + m / 2 + 1, size.width - 2 * m - 2, size.height / 2 - 2 * m - 2), -0.004);
       cv::circle(out, cv::Point(size.width - m / 2 - 2, size.height / 2), std::max(2, m / 3), cv::Scalar(0.5, 0.55, 0.6), cv::FILLED);
       return out;
     }
     case TextureKind::kWindow: return MakeWindow(size, rng);
     case TextureKind::kLampShade:
       return Modulated(size, base, ValueNoise(size, 3.0, rng), 0.05f);
-    case TextureKind::kCabinet: return MakeCabinet(size, base, rng);
-    case TextureKind::kRadiator: return MakeRadiator(size, base, rng);
-    case TextureKind::kCurtain: return MakeCurtain(size, base, rng);
+    case TextureKind::kCabinet: return MakeCabinet(size, base, rng, relief);
+    case TextureKind::kRadiator: return MakeRadiator(size, base, rng, relief);
+    case TextureKind::kCurtain: return MakeCurtain(size, base, rng, relief);
     case TextureKind::kScreen: return MakeScreen(size, rng);
     case TextureKind::kPackaging: return MakePackaging(size, base, rng);
     case TextureKind::kWallpaper: return MakeWallpaper(size, base, rng);
@@ -440,6 +470,73 @@ cv::Mat MakeTexture(const TextureRequest& request, const std::vector<cv::Mat>& u
     case TextureKind::kFoliage: return MakeFoliage(size, rng);
   }
   return cv::Mat(size, CV_32FC3, ToScalar(base));
+}
+
+// Whether a kind has relief at all; prints, glass, screens and lamp shades are flat.
+bool HasRelief(TextureKind kind) {
+  switch (kind) {
+    case TextureKind::kPicture:
+    case TextureKind::kPoster:
+    case TextureKind::kDocking:
+    case TextureKind::kWindow:
+    case TextureKind::kLampShade:
+    case TextureKind::kScreen:
+    case TextureKind::kPackaging:
+    case TextureKind::kSwitch:
+    case TextureKind::kClock:
+      return false;
+    default:
+      return true;
+  }
+}
+
+// The material's random relief (amplitude, cell size): plaster waviness and
+// paint stipple, wood grain, uneven tiles, weave and wrinkles, rug pile,
+// embossed wallpaper, leaves.
+void AddMaterialNoise(TextureKind kind, ReliefCanvas& relief, cv::RNG& rng) {
+  switch (kind) {
+    case TextureKind::kPaint:
+      relief.AddNoise(0.002, 0.25, rng);   // plaster waviness
+      relief.AddNoise(0.0006, 0.03, rng);  // roller stipple
+      break;
+    case TextureKind::kCeiling:
+      relief.AddNoise(0.001, 0.3, rng);
+      relief.AddNoise(0.0004, 0.06, rng);
+      break;
+    case TextureKind::kWoodFloor:
+    case TextureKind::kWood: relief.AddNoise(0.0003, 0.016, rng); break;  // brushed grain
+    case TextureKind::kTiles: relief.AddNoise(0.0008, 0.05, rng); break;  // uneven glaze
+    case TextureKind::kFabric:
+      relief.AddNoise(0.0015, 0.012, rng);  // weave
+      relief.AddNoise(0.008, 0.06, rng);    // wrinkles and puffiness
+      break;
+    case TextureKind::kRug:
+      relief.AddNoise(0.003, 0.008, rng);  // pile
+      relief.AddNoise(0.005, 0.05, rng);
+      break;
+    case TextureKind::kDoor: relief.AddNoise(0.0005, 0.03, rng); break;
+    case TextureKind::kCurtain: relief.AddNoise(0.002, 0.02, rng); break;
+    case TextureKind::kWallpaper: relief.AddNoise(0.001, 0.008, rng); break;  // embossing
+    case TextureKind::kFoliage: relief.AddNoise(0.010, 0.008, rng); break;  // leaves at every angle
+    default: break;
+  }
+}
+
+}  // namespace
+
+SurfaceTexture MakeTexture(const TextureRequest& request, const std::vector<cv::Mat>& user_images) {
+  const double texel = TexelSizeM(request.kind);
+  const cv::Size size(Texels(request.size_u_m, texel), Texels(request.size_v_m, texel));
+  const bool relief_on = request.relief_scale > 0.0 && HasRelief(request.kind);
+  ReliefCanvas relief = relief_on ? ReliefCanvas(size, texel) : ReliefCanvas();
+  SurfaceTexture out;
+  out.albedo = MakeAlbedo(request, user_images, size, relief);
+  if (relief_on) {
+    cv::RNG relief_rng(DeriveSeed(request.seed, 0x72656c696566ull) | 1);  // its own stream: "relief"
+    AddMaterialNoise(request.kind, relief, relief_rng);
+    out.height_m = relief.height_m() * request.relief_scale;
+  }
+  return out;
 }
 
 std::vector<cv::Mat> LoadUserTextures(const std::string& folder) {

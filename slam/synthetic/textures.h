@@ -1,4 +1,5 @@
-// Procedural, seeded albedo textures (linear BGR, CV_32FC3 in [0, 1]). The
+// Procedural, seeded surface textures: the albedo (linear BGR, CV_32FC3 in
+// [0, 1]) and, on request, the relief height drawn with it (relief.h). The
 // texture size in texels is the surface size divided by the texel size.
 #pragma once
 
@@ -42,14 +43,27 @@ struct TextureRequest {
   double size_v_m = 1.0;
   cv::Vec3f base_bgr = cv::Vec3f(0.6f, 0.6f, 0.6f);  // main colour (linear)
   uint64_t seed = 0;
+  double relief_scale = 0.0;  // multiplies the material's relief heights (relief.h); 0 = flat
+};
+
+struct SurfaceTexture {
+  cv::Mat albedo;    // CV_32FC3
+  cv::Mat height_m;  // CV_32F, the albedo's size; empty when flat
 };
 
 // Texel size in metres used for each kind (finer for pictures and books).
 double TexelSizeM(TextureKind kind);
 
-// Generates the albedo texture. `user_images` (optional) replaces the content
-// of pictures and posters with the user's images, chosen by seed.
-cv::Mat MakeTexture(const TextureRequest& request, const std::vector<cv::Mat>& user_images);
+// Generates the texture. `user_images` (optional) replaces the content of
+// pictures and posters with the user's images, chosen by seed. The albedo
+// does not depend on relief_scale (the relief draws from its own stream); the
+// height is empty for flat kinds (prints, screens, windows, lamp shades) and
+// for relief_scale 0.
+SurfaceTexture MakeTexture(const TextureRequest& request, const std::vector<cv::Mat>& user_images);
+
+// Smooth value noise in [-1, 1]: a coarse random grid of one cell per
+// `cell_texels` texels, upsampled bicubically.
+cv::Mat ValueNoise(cv::Size size, double cell_texels, cv::RNG& rng);
 
 // Loads every readable .png/.jpg/.jpeg in `folder` (sorted by name); throws
 // InputError naming the folder when it is missing or holds no image.

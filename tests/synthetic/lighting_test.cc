@@ -126,6 +126,74 @@ TEST_F(LightingTest, LivingRoomLampSwitchesOnAt1754) {
   EXPECT_GT(lamps_at(17.95), lamps_at(17.85) + 1.0f);
 }
 
+// The irradiance vector's component along the normal is the irradiance
+// itself, whatever lights the point: sun and sky by day, lamps at night.
+TEST_F(LightingTest, IrradianceVectorAlongTheNormalIsTheIrradiance) {
+  const std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> probes = {
+      {{0.8, 2.3, 2.499}, {0, 0, -1}}, {{5.999, 0.6, 1.2}, {-1, 0, 0}}, {{2.0, 2.0, 0.001}, {0, 0, 1}},
+      {{1.0, 1.0, 0.001}, {0, 0, 1}}, {{3.0, 4.59, 1.5}, {0, -1, 0}}};
+  int sunlit = 0;
+  for (const double t : {16.0 + 46.0 / 60, 18.5, 20.75}) {
+    const SessionLighting l = ComputeSessionLighting(options_, *scene_, t);
+    for (const auto& [point, normal] : probes) {
+      const IrradianceParts e = ComputeDirectIrradiance(*scene_, l, point, normal, 0, -1);
+      sunlit += Luminance(e.sun) > 0.0f;
+      const double along_normal = e.direction_weighted.dot(normal);
+      EXPECT_NEAR(along_normal, Luminance(e.total()), 1e-4 * Luminance(e.total()) + 1e-9)
+          << "at " << t << " h, probe " << point.transpose();
+    }
+  }
+  EXPECT_GT(sunlit, 0);  // the sun term is covered too
+}
+
+// A one-quad room lit by one lamp: the irradiance vector points at the lamp
+// with the lamp's I / r^2, and a relief slope tilting a texel's normal
+// towards the lamp brightens it by exactly the cosine it gains (ambient off).
+TEST(PrepareRadiance, ReliefShadesByTheDirectionTheLightComesFrom) {
+  Scene scene;
+  scene.room_names = {"test room"};
+  Quad floor;
+  floor.origin_in_world = Eigen::Vector3d(0, 0, 0);
+  floor.u_axis = Eigen::Vector3d::UnitX();
+  floor.v_axis = Eigen::Vector3d::UnitY();
+  floor.size_u_m = floor.size_v_m = 1.0;
+  floor.albedo = cv::Mat(40, 40, CV_32FC3, cv::Scalar(0.5, 0.5, 0.5));
+  scene.quads.push_back(floor);
+  Lamp lamp;
+  lamp.name = "test lamp";
+  lamp.position_in_world = Eigen::Vector3d(1.5, 0.5, 1.0);
+  lamp.intensity_cd = 100.0;
+  scene.lamps.push_back(lamp);
+  LightingOptions options;
+  options.ambient_fraction = 0.0;
+  options.ambient_leak = 0.0;
+  options.light_texel_m = 0.025;
+  const SessionLighting l = ComputeSessionLighting(options, scene, 20.75);
+  const Eigen::Vector3d centre(0.5125, 0.5125, 0.0);  // texel (20, 20)
+  const Eigen::Vector3d to_lamp = lamp.position_in_world - centre;
+  const double r2 = to_lamp.squaredNorm();
+  const IrradianceParts e = ComputeDirectIrradiance(scene, l, centre, Eigen::Vector3d::UnitZ(), 0, 0);
+  EXPECT_LT((e.direction_weighted - lamp.intensity_cd / r2 * to_lamp.normalized()).norm(), 1e-6 * lamp.intensity_cd / r2);
+
+  const auto radiance_at_centre = [&](float slope_u) {
+    scene.quads[0].relief_slope = cv::Mat(40, 40, CV_32FC2, cv::Scalar(slope_u, 0.0));
+    const std::vector<cv::Mat> radiance = PrepareRadiance(scene, l, options);
+    return static_cast<double>(Luminance(radiance[0].at<cv::Vec3f>(20, 20)));
+  };
+  const double flat = radiance_at_centre(0.0f);
+  EXPECT_NEAR(flat, 0.5 * lamp.intensity_cd * to_lamp.normalized().z() / r2 / M_PI, 0.01 * flat);
+  for (const float slope : {-0.3f, 0.3f}) {
+    // n' = (-slope, 0, 1) / |.|: a negative slope along x tilts towards the lamp at larger x.
+    const Eigen::Vector3d tilted = Eigen::Vector3d(-slope, 0.0, 1.0).normalized();
+    const double expected = flat * tilted.dot(to_lamp.normalized()) / to_lamp.normalized().z();
+    EXPECT_NEAR(radiance_at_centre(slope), expected, 0.01 * expected) << slope;
+  }
+  EXPECT_GT(radiance_at_centre(-0.3f), 1.2 * flat);
+  EXPECT_LT(radiance_at_centre(0.3f), 0.8 * flat);
+  // A slope steep enough to face away from the lamp receives none of it.
+  EXPECT_EQ(radiance_at_centre(5.0f), 0.0);
+}
+
 TEST(ColorTemperatureToBgr, WarmLightIsRedderThanDaylight) {
   const cv::Vec3f warm = ColorTemperatureToBgr(2700), day = ColorTemperatureToBgr(6500);
   EXPECT_GT(warm[2] / warm[0], 2.0f);
