@@ -69,7 +69,7 @@ bool SamePlace(const Rigid3d& a, const Rigid3d& b) {
 }
 
 // Renders the default session 1 route (16:46, sun in the windows) at
-// 320x240 and maps it frame by frame.
+// 320x240 on the flat scene and maps it frame by frame.
 std::vector<MappedFrame> MapSyntheticSession(const std::string& feature_type) {
   GeneratorConfig config;
   config.camera.width = 320;
@@ -78,6 +78,11 @@ std::vector<MappedFrame> MapSyntheticSession(const std::string& feature_type) {
   config.lighting.light_texel_m = 0.1;          // coarser light map: faster preparation
   ApartmentOptions scene_options = config.scene;
   scene_options.seed = DeriveSeed(config.seed, 1);
+  // The flat scene, on which the bounds below were measured: this is a guard
+  // of the LCD code on a fixed input. On the default scene with material
+  // relief LCD alone accepts more look-alike views (SURF 20 false of 41,
+  // docs/loop_closure.md), which registration rejects in the engine.
+  scene_options.relief_scale = 0.0;
   const Scene scene = BuildApartment(scene_options);
   const uint64_t seed = DeriveSeed(config.seed, 100);
   const std::vector<TimedPose> route =
