@@ -59,14 +59,17 @@ RunFn SetupStats(CLI::App& command) {
   command.add_option("--pairs-csv", args->pairs_csv,
                      "also write every corresponding frame pair's keypoints, matches and correct matches here");
   return [args] {
+    // A path that cannot be written fails before the minutes of matching; an
+    // existing file is left as it is until the new one is complete.
+    if (!args->pairs_csv.empty()) {
+      const bool existed = std::filesystem::exists(args->pairs_csv);
+      SLAM_THROW_IF_NOT(InputError, std::ofstream(args->pairs_csv, std::ios::app).good())
+          << args->pairs_csv << ": cannot write";
+      if (!existed) std::filesystem::remove(args->pairs_csv);
+    }
     const bool synthetic = std::filesystem::exists(args->dataset_path + "/" + kManifestFileName);
     std::unique_ptr<DatasetReader> dataset =
         synthetic ? OpenSyntheticDataset(args->dataset_path) : OpenTumDataset(args->dataset_path);
-    std::ofstream pairs_out;  // opened first: a bad path fails before the minutes of matching
-    if (!args->pairs_csv.empty()) {
-      pairs_out.open(args->pairs_csv);
-      SLAM_THROW_IF_NOT(InputError, pairs_out.good()) << args->pairs_csv << ": cannot write";
-    }
     const RealismReport r = ComputeRealism(*dataset, args->options);
     std::printf("realism of %s: %d anchors (every %d frames of session %s), %d features, ratio %.2f, "
                 "inlier = ground-truth reprojection within %.1f px\n",
@@ -80,7 +83,8 @@ RunFn SetupStats(CLI::App& command) {
                   args->options.min_correct_matches);
     PrintMatrix(title, r, r.sift_found_fraction);
     std::printf("\ncomputed in %.1f s\n", r.wall_s);
-    if (pairs_out.is_open()) {
+    if (!args->pairs_csv.empty()) {
+      std::ofstream pairs_out(args->pairs_csv);
       pairs_out << PairsCsv(r);
       pairs_out.flush();
       SLAM_THROW_IF_NOT(InputError, pairs_out.good()) << args->pairs_csv << ": cannot write";

@@ -33,8 +33,8 @@ struct ApartmentOptions {
   double floor_reflectance = 0.0;
   // Multiplies the materials' relief heights (plaster, grain, grout, weave,
   // fins, folds, panels; textures.cc), which the light shows by the direction
-  // it comes from (relief.h). 1 = the materials' measured-plausible heights;
-  // 0 = every surface flat (the scene before 2026-12-02).
+  // it comes from (relief.h). 1 = plausible real heights (millimetres to
+  // centimetres); 0 = every surface flat (the scene before 2026-12-02).
   double relief_scale = 1.0;
 
   void Check() const;

@@ -20,7 +20,6 @@ class ReliefCanvas {
   ReliefCanvas(cv::Size size, double texel_m);
 
   bool enabled() const { return !height_m_.empty(); }
-  double texel_m() const { return texel_m_; }
   cv::Mat& height_m() { return height_m_; }
 
   // Adds value noise of this amplitude (metres) and cell size (metres).

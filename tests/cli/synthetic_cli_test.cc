@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -45,6 +46,11 @@ std::string SmallConfig(const fs::path& root, const std::string& extra = "") {
     "lighting": {"light_texel_m": 0.25},
     "sessions": [{"name": "1", "clock_time": "16:46"}, {"name": "F", "clock_time": "19:42", "role": "localization"}]})";
   return path;
+}
+
+std::string ReadAll(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 int CountLines(const std::string& s) {
@@ -134,6 +140,15 @@ TEST(DatasetStatsCli, WritesTheFramePairsAndRefusesAnUnwritablePath) {
     ++rows;
   }
   EXPECT_EQ(rows, 3);  // three anchors, each seen in both sessions
+  in.close();
+  // A dataset that fails to read leaves the earlier file as it was.
+  const std::string before = ReadAll(csv);
+  fs::path victim;
+  for (const auto& entry : fs::directory_iterator(out + "/F/rgb")) victim = entry.path();
+  fs::remove(victim);
+  const Result failed = RunDuskmap("dataset-stats --dataset " + out + " --pairs-csv " + csv);
+  EXPECT_EQ(failed.exit_code, 1) << failed.output;
+  EXPECT_EQ(ReadAll(csv), before);
   const std::string unwritable = (root / "no_such_folder" / "pairs.csv").string();
   const Result bad = RunDuskmap("dataset-stats --dataset " + out + " --pairs-csv " + unwritable);
   EXPECT_EQ(bad.exit_code, 1);
