@@ -54,6 +54,8 @@ RunFn SetupStats(CLI::App& command) {
   command.add_option("--dataset", args->dataset_path, "synthetic dataset folder (manifest.json)")->required();
   command.add_option("--frame-step", args->options.frame_step, "anchor spacing in frames");
   command.add_option("--max-features", args->options.max_features, "features per frame and detector");
+  command.add_option("--sift-contrast", args->options.sift_contrast_threshold,
+                     "SIFT contrast threshold (default 0.04, OpenCV's; the paper's experiments use 0.02)");
   command.add_option("--min-correct", args->options.min_correct_matches,
                      "correct matches a frame pair needs to count as found (default 10)");
   command.add_option("--pairs-csv", args->pairs_csv,
@@ -71,10 +73,11 @@ RunFn SetupStats(CLI::App& command) {
     std::unique_ptr<DatasetReader> dataset =
         synthetic ? OpenSyntheticDataset(args->dataset_path) : OpenTumDataset(args->dataset_path);
     const RealismReport r = ComputeRealism(*dataset, args->options);
-    std::printf("realism of %s: %d anchors (every %d frames of session %s), %d features, ratio %.2f, "
-                "inlier = ground-truth reprojection within %.1f px\n",
+    std::printf("realism of %s: %d anchors (every %d frames of session %s), %d features, SIFT contrast %.3f, "
+                "ratio %.2f, inlier = ground-truth reprojection within %.1f px\n",
                 args->dataset_path.c_str(), r.anchors, args->options.frame_step, r.sessions[0].c_str(),
-                args->options.max_features, args->options.ratio_test, args->options.max_reprojection_px);
+                args->options.max_features, args->options.sift_contrast_threshold, args->options.ratio_test,
+                args->options.max_reprojection_px);
     PrintMatrix("SIFT median inlier ratio", r, r.sift_inlier_ratio);
     PrintMatrix("ORB median inlier ratio", r, r.orb_inlier_ratio);
     PrintMatrix("SIFT median correct matches", r, r.sift_median_inliers);

@@ -106,7 +106,7 @@ std::vector<AnchorFrame> CollectAnchorFrames(const RealismOptions& o, SessionRea
       }
     }
   }
-  cv::Ptr<cv::SIFT> sift = cv::SIFT::create(o.max_features);
+  cv::Ptr<cv::SIFT> sift = cv::SIFT::create(o.max_features, 3, o.sift_contrast_threshold);
   cv::Ptr<cv::ORB> orb = cv::ORB::create(o.max_features);
   std::vector<AnchorFrame> out(anchors.size());
   for (size_t i = 0; i < anchors.size(); ++i) {
@@ -128,6 +128,8 @@ std::vector<AnchorFrame> CollectAnchorFrames(const RealismOptions& o, SessionRea
 void RealismOptions::Check() const {
   SLAM_THROW_IF_NOT(ConfigError, frame_step >= 1) << "frame_step must be >= 1, got " << frame_step;
   SLAM_THROW_IF_NOT(ConfigError, max_features >= 10) << "max_features must be >= 10, got " << max_features;
+  SLAM_THROW_IF_NOT(ConfigError, sift_contrast_threshold > 0.0 && sift_contrast_threshold < 1.0)
+      << "sift_contrast_threshold must be in (0, 1), got " << sift_contrast_threshold;
   SLAM_THROW_IF_NOT(ConfigError, ratio_test > 0 && ratio_test <= 1) << "ratio_test must be in (0, 1], got " << ratio_test;
   SLAM_THROW_IF_NOT(ConfigError, max_reprojection_px > 0) << "max_reprojection_px must be > 0";
   SLAM_THROW_IF_NOT(ConfigError, max_position_gap_m > 0 && max_angle_gap_deg > 0) << "correspondence gaps must be > 0";

@@ -25,6 +25,9 @@ namespace duskmap {
 struct RealismOptions {
   int frame_step = 10;               // anchor spacing in frames of the first session
   int max_features = 1000;           // per frame and detector
+  // SIFT's DoG contrast threshold: OpenCV's default 0.04; the paper's
+  // experiments run SIFT at 0.02 (SIFT/ContrastThreshold, spec appendix A).
+  double sift_contrast_threshold = 0.04;
   double ratio_test = 0.8;           // Lowe's nearest/second-nearest distance ratio
   double max_reprojection_px = 4.0;  // inlier threshold against ground truth
   double max_position_gap_m = 0.5;   // anchor correspondence: largest position difference

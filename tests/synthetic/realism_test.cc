@@ -93,12 +93,29 @@ TEST_F(RealismTest, SameTimeMatchesBetterThanDayAgainstNight) {
   EXPECT_GT(r.sift_inlier_ratio(0, 1), r.sift_inlier_ratio(0, 2));
 }
 
+// The paper's experiments run SIFT at contrast threshold 0.02 (OpenCV's
+// default is 0.04): more keypoints per frame.
+TEST_F(RealismTest, ALowerSiftContrastThresholdFindsMoreKeypoints) {
+  RealismOptions options;
+  options.frame_step = 1;
+  const auto keypoints = [&](double threshold) {
+    options.sift_contrast_threshold = threshold;
+    long total = 0;
+    for (const RealismPair& p : ComputeRealism(*Open(), options).pairs) total += p.sift_keypoints_a;
+    return total;
+  };
+  EXPECT_GT(keypoints(0.02), keypoints(0.04) * 5 / 4);
+}
+
 TEST_F(RealismTest, RejectsBadOptionsAndASingleSession) {
   RealismOptions options;
   options.frame_step = 0;
   EXPECT_THROW(ComputeRealism(*Open(), options), ConfigError);
   options = RealismOptions();
   options.ratio_test = 1.5;
+  EXPECT_THROW(ComputeRealism(*Open(), options), ConfigError);
+  options = RealismOptions();
+  options.sift_contrast_threshold = 0.0;
   EXPECT_THROW(ComputeRealism(*Open(), options), ConfigError);
   const fs::path single = *root_ / "single";
   GeneratorConfig config = testing::SmallConfig(1);
