@@ -52,12 +52,15 @@ void PrintMatrix(const char* title, const RealismReport& r, const Eigen::MatrixX
 RunFn SetupStats(CLI::App& command) {
   auto args = std::make_shared<StatsArgs>();
   command.add_option("--dataset", args->dataset_path, "synthetic dataset folder (manifest.json)")->required();
-  command.add_option("--frame-step", args->options.frame_step, "anchor spacing in frames");
-  command.add_option("--max-features", args->options.max_features, "features per frame and detector");
+  command.add_option("--frame-step", args->options.frame_step, "anchor spacing in frames")->capture_default_str();
+  command.add_option("--max-features", args->options.max_features, "features per frame and detector")
+      ->capture_default_str();
   command.add_option("--sift-contrast", args->options.sift_contrast_threshold,
-                     "SIFT contrast threshold (default 0.04, OpenCV's; the paper's experiments use 0.02)");
+                     "SIFT contrast threshold (OpenCV's default; the paper's experiments use 0.02)")
+      ->capture_default_str();
   command.add_option("--min-correct", args->options.min_correct_matches,
-                     "correct matches a frame pair needs to count as found (default 10)");
+                     "correct matches a frame pair needs to count as found")
+      ->capture_default_str();
   command.add_option("--pairs-csv", args->pairs_csv,
                      "also write every corresponding frame pair's keypoints, matches and correct matches here");
   return [args] {
