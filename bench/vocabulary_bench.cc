@@ -5,7 +5,8 @@
 // float and ORB/BRIEF-like binary descriptors. Also compares the binary
 // index kinds, and reports vocabulary memory per word. "float_u8" is the
 // float map with its words quantized to 8 bits (the engine's default word
-// storage, docs/engine.md).
+// storage, docs/engine.md). BM_ImportVocabulary opens the six-session
+// vocabulary with and without the index a map stores (issue 22).
 //
 // The maps are realistic in their statistics: each node sees 360 landmarks of
 // a sliding window (160 shared with the previous node) plus 40 of 1,000
@@ -208,6 +209,30 @@ void BM_BinaryIndexQuantize400(benchmark::State& state) {
   state.counters["matched_fraction"] = matched / (400.0 * state.iterations());
 }
 
+// Opening a map's vocabulary (Vocabulary::Import) on the six-session map,
+// range(1) = 1: with the index the map stores (restored), 0: without
+// (built, as every load did before maps stored it).
+void BM_ImportVocabulary(benchmark::State& state) {
+  BenchMap& map = GetMap(KindOf(state), 1200, IndexKind::kBitKdTree, WordStorageOf(state));
+  const VocabularyOptions& options = map.lcd->vocabulary().options();
+  VocabularySnapshot snapshot = map.lcd->vocabulary().Export();
+  if (state.range(1) == 1) {
+    Vocabulary built(options);
+    built.Import(snapshot);
+    snapshot.index_state = built.SaveIndexState();
+  }
+  bool restored = false;
+  for (auto _ : state) {
+    Vocabulary v(options);
+    v.Import(snapshot);
+    restored = v.index_restore().restored;
+    benchmark::DoNotOptimize(v.num_words());
+  }
+  state.SetLabel(restored ? "restored" : "built");
+  state.counters["words"] = static_cast<double>(snapshot.word_ids.size());
+  state.counters["index_MB"] = snapshot.index_state.size() / 1e6;
+}
+
 // Registered per map so that each map is built once.
 void RegisterAll() {
   for (int kind : {0, 1, 2}) {
@@ -222,6 +247,14 @@ void RegisterAll() {
           ->Args({kind, nodes})->Unit(benchmark::kMillisecond)->MinTime(0.5);
       benchmark::RegisterBenchmark(("BM_Lcd" + suffix).c_str(), BM_Lcd)
           ->Args({kind, nodes})->Unit(benchmark::kMillisecond)->MinTime(0.5);
+    }
+  }
+  for (int kind : {1, 2}) {
+    const std::string name = kind == 1 ? "binary" : "float_u8";
+    for (int stored : {0, 1}) {
+      benchmark::RegisterBenchmark(("BM_ImportVocabulary/" + name + "/1200").c_str(),
+                                   BM_ImportVocabulary)
+          ->Args({kind, stored})->Unit(benchmark::kMillisecond)->Iterations(3);
     }
   }
   for (IndexKind k : {IndexKind::kBitKdTree, IndexKind::kLsh, IndexKind::kHierarchical,

@@ -1,13 +1,18 @@
-// `duskmap localize`: re-localizes one session against a saved map (read
-// only) and writes per-frame records, the corrected trajectory and a summary.
+// `duskmap localize`: re-localizes one or more sessions against a saved map
+// (read only, loaded once) and writes per-frame records, the corrected
+// trajectory and a summary for each. Every session gets a fresh localizer
+// over the one loaded map, so its results do not depend on the others.
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <set>
+#include <string>
 #include <utility>
 
 #include "experiments/command_registry.h"
 #include "slam/core/check.h"
+#include "slam/core/timer.h"
 #include "slam/datasets/dataset_factory.h"
 #include "slam/engine/record_io.h"
 #include "slam/engine/session_runs.h"
@@ -21,7 +26,7 @@ struct LocalizeArgs {
   std::string map;
   std::string dataset;
   std::string format = "auto";
-  std::string session;
+  std::vector<std::string> sessions;
   std::string config;
   std::string records;
   std::string trajectory;
@@ -41,9 +46,11 @@ void WriteRecords(const std::string& path, const std::vector<LocalizationRecord>
   }
 }
 
-nlohmann::json SummaryToJson(const LocalizationRun& run) {
+nlohmann::json SummaryToJson(const std::string& session, const LocalizationRun& run,
+                             double map_load_s) {
   const RelocalizationSummary& r = run.summary.relocalization;
-  nlohmann::json j = {{"frames", r.num_frames},
+  nlohmann::json j = {{"session", session},
+                      {"frames", r.num_frames},
                       {"relocalized", r.num_relocalized},
                       {"relocalized_pct", r.relocalized_pct},
                       {"evaluated", run.summary.evaluated},
@@ -57,6 +64,10 @@ nlohmann::json SummaryToJson(const LocalizationRun& run) {
                       {"max_gap_m", run.summary.gaps.max_gap_m},
                       {"within_55cm_pct", run.summary.gaps.within_pct},
                       {"wall_s", run.wall_s},
+                      {"map_load_s", map_load_s},
+                      {"index_restored", run.index_restore.restored},
+                      {"index_restore_s", run.index_restore.seconds},
+                      {"localizer_setup_s", run.setup_s},
                       {"peak_rss_bytes", PeakResidentBytes()},
                       {"memory_bytes", MapMemoryToJson(run.memory)}};
   for (const auto& [stage, t] : run.timings) {
@@ -65,47 +76,106 @@ nlohmann::json SummaryToJson(const LocalizationRun& run) {
   return j;
 }
 
+// The path for one session: `path` itself with a single session, else with
+// "{session}" replaced by the session name.
+std::string SessionPath(const std::string& path, const std::string& session, bool several) {
+  if (!several || path.empty()) return path;
+  std::string out = path;
+  const std::string key = "{session}";
+  for (size_t at = out.find(key); at != std::string::npos; at = out.find(key, at + session.size())) {
+    out.replace(at, key.size(), session);
+  }
+  return out;
+}
+
+void CheckSessionPaths(const LocalizeArgs& args) {
+  std::set<std::string> seen;
+  for (const std::string& s : args.sessions) {
+    SLAM_THROW_IF_NOT(ConfigError, seen.insert(s).second)
+        << "localize: session '" << s << "' is given twice";
+  }
+  if (args.sessions.size() < 2) return;
+  for (const auto& [flag, path] : {std::pair<const char*, const std::string&>{"--records", args.records},
+                                   {"--trajectory", args.trajectory},
+                                   {"--summary", args.summary}}) {
+    SLAM_THROW_IF_NOT(ConfigError, path.empty() || path.find("{session}") != std::string::npos)
+        << "localize: " << flag << " " << path
+        << ": with several sessions the path must contain {session}";
+  }
+}
+
 RunFn SetupLocalize(CLI::App& command) {
   auto args = std::make_shared<LocalizeArgs>();
   command.add_option("--map", args->map, "map file (from duskmap map)")->required();
   command.add_option("--dataset", args->dataset, "dataset folder")->required();
   command.add_option("--dataset-format,--format", args->format,
                      "dataset format: auto (default), synthetic, tum, rtabmap-images, rtabmap-db");
-  command.add_option("--session", args->session, "session to localize")->required();
+  command.add_option("--session", args->sessions,
+                     "session(s) to localize, each against the same loaded map")
+      ->required();
   command.add_option("--config", args->config, "engine options (JSON); the map's feature type wins");
-  command.add_option("--records", args->records, "per-frame records (.jsonl or .csv)");
-  command.add_option("--trajectory", args->trajectory, "corrected trajectory (TUM format)");
-  command.add_option("--summary", args->summary, "write the summary as JSON here");
+  command.add_option("--records", args->records,
+                     "per-frame records (.jsonl or .csv); with several sessions the path "
+                     "must contain {session}");
+  command.add_option("--trajectory", args->trajectory,
+                     "corrected trajectory (TUM format); {session} as for --records");
+  command.add_option("--summary", args->summary,
+                     "write the summary as JSON here; {session} as for --records");
   command.add_option("--odometry-cache", args->odometry_cache,
                      "odometry-cache size (0 = paper-era rule; overrides the config)");
   return [args] {
+    CheckSessionPaths(*args);
     EngineOptions options = args->config.empty() ? EngineOptions() : ReadEngineOptionsFile(args->config);
     if (args->odometry_cache >= 0) options.localization.odometry_cache_size = args->odometry_cache;
-    // The words apart: the localizer imports them into its vocabulary and
-    // lets them go, so the run holds them once.
+    // The words apart: each session's localizer imports a copy into its
+    // vocabulary and lets it go.
+    Stopwatch load;
     MapAndWords loaded = LoadMapAndWords(args->map, options.LocalizationMapLoad());
+    const double map_load_s = load.ElapsedMs() / 1000.0;
     const Map& map = loaded.map;
     if (args->config.empty()) options.features.type = map.metadata().feature_type;
     options.Check();
     const auto dataset = OpenDataset(args->dataset, args->format);
-    std::unique_ptr<SessionReader> session = dataset->OpenSession(args->session);
-    const LocalizationRun run =
-        LocalizeSession(map, std::move(loaded.words), *session, options);
-    if (!args->records.empty()) WriteRecords(args->records, run.records);
-    if (!args->trajectory.empty()) WriteCorrectedTrajectory(args->trajectory, run.records);
-    const nlohmann::json summary = SummaryToJson(run);
-    if (!args->summary.empty()) {
-      std::ofstream out(args->summary);
-      SLAM_THROW_IF_NOT(InputError, out.good()) << args->summary << ": cannot write";
-      out << summary.dump(2) << '\n';
+    // Every session is opened before the first is localized: a wrong name
+    // fails before any work.
+    std::vector<std::unique_ptr<SessionReader>> readers;
+    for (const std::string& name : args->sessions) readers.push_back(dataset->OpenSession(name));
+    const bool several = args->sessions.size() > 1;
+    nlohmann::json summaries = nlohmann::json::array();
+    bool warned = false;
+    for (size_t i = 0; i < readers.size(); ++i) {
+      const std::string& name = args->sessions[i];
+      const bool last = i + 1 == readers.size();
+      const LocalizationRun run = LocalizeSession(
+          map, last ? std::move(loaded.words) : MapWords(loaded.words), *readers[i], options);
+      readers[i].reset();
+      if (!run.index_restore.restored && !warned) {
+        std::cerr << "duskmap localize: warning: " << args->map
+                  << ": vocabulary index rebuilt (" << run.index_restore.rebuild_reason << ", "
+                  << run.index_restore.seconds << " s); the map is unchanged\n";
+        warned = true;
+      }
+      const std::string records = SessionPath(args->records, name, several);
+      const std::string trajectory = SessionPath(args->trajectory, name, several);
+      const std::string summary_path = SessionPath(args->summary, name, several);
+      if (!records.empty()) WriteRecords(records, run.records);
+      if (!trajectory.empty()) WriteCorrectedTrajectory(trajectory, run.records);
+      nlohmann::json summary = SummaryToJson(name, run, i == 0 ? map_load_s : 0.0);
+      if (!summary_path.empty()) {
+        std::ofstream out(summary_path);
+        SLAM_THROW_IF_NOT(InputError, out.good()) << summary_path << ": cannot write";
+        out << summary.dump(2) << '\n';
+      }
+      summaries.push_back(std::move(summary));
     }
-    std::cout << summary.dump(2) << '\n';
+    std::cout << (several ? summaries : summaries[0]).dump(2) << '\n';
     return 0;
   };
 }
 
 const bool kRegistered = RegisterCommand(
-    {"localize", "Re-localize one session against a saved map (read-only)", &SetupLocalize});
+    {"localize", "Re-localize one or more sessions against a saved map (read-only, loaded once)",
+     &SetupLocalize});
 
 }  // namespace
 }  // namespace duskmap::cli

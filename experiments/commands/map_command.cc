@@ -72,6 +72,7 @@ RunFn SetupMap(CLI::App& command) {
     nlohmann::json summary = MapSummaryToJson(SummarizeMap(run.map));
     summary["frames"] = run.frames.size();
     summary["wall_s"] = run.wall_s;
+    summary["index_build_s"] = run.index_build_s;
     summary["timings"] = TimingsToJson(run.timings);
     summary["peak_rss_bytes"] = PeakResidentBytes();
     summary["map_file"] = args->output;

@@ -60,6 +60,7 @@ LoopClosureOptions EngineOptions::LoopClosure() const {
   LoopClosureOptions o = loop_closure;
   // Kp/MaxFeatures is a feature setting in the paper's tables; one value.
   o.vocabulary.max_features_per_node = features.vocabulary_features;
+  o.vocabulary.index.binary_distance = binary_distance;
   o.short_term_memory_size = mapping.short_term_memory;
   return o;
 }
@@ -68,6 +69,7 @@ RegistrationOptions EngineOptions::Registration() const {
   RegistrationOptions o = registration;
   o.pnp.random_seed = random_seed;
   o.matching.random_seed = random_seed;
+  o.matching.binary_distance = binary_distance;
   return o;
 }
 
@@ -154,6 +156,9 @@ EngineOptions ReadEngineOptions(JsonFields& fields) {
                     &o.localization.odometry_cache_max_error_ratio);
   localization.RejectUnknown();
   fields.Read("random_seed", &o.random_seed);
+  std::string binary_distance = BinaryDistanceName(o.binary_distance);
+  fields.Read("binary_distance", &binary_distance);
+  o.binary_distance = ParseBinaryDistance(binary_distance, "EngineOptions.binary_distance");
   fields.RejectUnknown();
   o.Check();
   return o;
@@ -199,7 +204,8 @@ nlohmann::json EngineOptionsToJson(const EngineOptions& o) {
         {"proximity_max_paths", o.localization.proximity_max_paths},
         {"odometry_cache_size", o.localization.odometry_cache_size},
         {"odometry_cache_max_error_ratio", o.localization.odometry_cache_max_error_ratio}}},
-      {"random_seed", o.random_seed}};
+      {"random_seed", o.random_seed},
+      {"binary_distance", BinaryDistanceName(o.binary_distance)}};
 }
 
 }  // namespace duskmap

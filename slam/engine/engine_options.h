@@ -54,9 +54,10 @@ struct LocalizationOptions {
 
 struct EngineOptions {
   // The modules' own defaults are the reference's current ones; the engine's
-  // are the paper's runs (spec appendix A), which differ in two places:
-  // RGBD/OptimizeMaxError 0 (no rejection of optimisations) and
-  // Kp/BadSignRatio 0.2. configs/engine_paper.json spells them all out.
+  // are the paper's runs (spec appendix A), which differ in three places:
+  // RGBD/OptimizeMaxError 0 (no rejection of optimisations),
+  // Kp/BadSignRatio 0.2 and Kp/ByteToFloat true (binary_distance byte_l1).
+  // configs/engine_paper.json spells them all out.
   EngineOptions();
 
   FeatureOptions features;
@@ -71,6 +72,11 @@ struct EngineOptions {
   MappingOptions mapping;
   LocalizationOptions localization;
   uint64_t random_seed = 0;  // seeds registration RANSAC and KD-trees
+  // How binary descriptors are compared in the vocabulary and in
+  // registration's first-pass matching (binary_distance.h): the L1 of the
+  // byte values, as the paper's runs (Kp/ByteToFloat true), or Hamming (the
+  // reference's default). The guess-window pass always uses Hamming.
+  BinaryDistance binary_distance = BinaryDistance::kByteL1;
 
   void Check() const;
 
@@ -88,7 +94,8 @@ struct EngineOptions {
 //   {"features": {...}, "registration": {"min_inliers": 20},
 //    "loop_closure": {"loop_threshold": 0.11}, "proximity": {"local_radius_m": 1},
 //    "optimizer": {"max_error_ratio": 0}, "mapping": {"reduce_graph": true},
-//    "localization": {"odometry_cache_size": 0}, "random_seed": 0}
+//    "localization": {"odometry_cache_size": 0}, "random_seed": 0,
+//    "binary_distance": "byte_l1"}
 // Unknown keys are rejected with their path; the result is checked.
 EngineOptions ReadEngineOptions(JsonFields& fields);
 EngineOptions ReadEngineOptionsFile(const std::string& path);

@@ -53,7 +53,9 @@ Localizer::Localizer(const Map& map, const EngineOptions& options, const MapWord
   SLAM_THROW_IF_NOT(ConfigError, map.metadata().feature_type == options_.features.type)
       << "Localizer: the map was built with feature type '" << map.metadata().feature_type
       << "', the options ask for '" << options_.features.type << "'";
-  extractor_ = CreateFeatureExtractor(options_.features);
+  // The extractor is made on the first frame that needs it: frames with
+  // their features (a feature cache) never do, and some extractors take a
+  // while to build (BRISK's sampling pattern).
   matcher_ = CreateFeatureMatcher(options_.matcher);
   lcd_ = std::make_unique<LoopClosureDetector>(options_.LoopClosure());
   // The mapper's vocabulary, restored exactly from the map (as the reference
@@ -75,6 +77,7 @@ Localizer::Localizer(const Map& map, const EngineOptions& options, const MapWord
 Localizer::~Localizer() = default;
 
 LocalizationRecord Localizer::ProcessFrame(const RgbdFrame& frame) {
+  if (extractor_ == nullptr) extractor_ = CreateFeatureExtractor(options_.features);
   Stopwatch watch;
   const FrameFeatures features = extractor_->Extract(frame.bgr, frame.depth_m, &frame.camera);
   const double features_ms = watch.ElapsedMs();

@@ -46,7 +46,6 @@ class Localizer {
   LocalizationRecord ProcessFrame(const RgbdFrame& frame, const FrameFeatures& features);
 
   const std::optional<Rigid3d>& map_from_odom() const { return map_from_odom_; }
-  const FeatureExtractor& extractor() const { return *extractor_; }
   const LoopClosureDetector& loop_closure() const { return *lcd_; }
 
  private:
@@ -65,7 +64,7 @@ class Localizer {
   EngineOptions options_;
   RegistrationOptions registration_;
   std::unique_ptr<FeatureMatcher> matcher_;  // nullptr: registration's NNDR
-  std::unique_ptr<FeatureExtractor> extractor_;
+  std::unique_ptr<FeatureExtractor> extractor_;  // made by the first ProcessFrame(frame)
   std::unique_ptr<LoopClosureDetector> lcd_;
   std::optional<Rigid3d> map_from_odom_;
   std::unique_ptr<OdometryCache> cache_;  // only with localization.odometry_cache_size > 0

@@ -6,6 +6,7 @@
 
 #include "slam/core/check.h"
 #include "slam/core/timer.h"
+#include "slam/engine/vocabulary_index.h"
 
 namespace duskmap {
 
@@ -75,31 +76,34 @@ MappingRun BuildMap(const DatasetReader& dataset, const std::vector<std::string>
 MappingRun BuildMap(const std::vector<FrameSource*>& sessions, const EngineOptions& options) {
   SLAM_THROW_IF_NOT(InputError, !sessions.empty()) << "BuildMap: no session to map";
   Stopwatch wall;
-  Mapper mapper(options);
   MappingRun run;
   std::map<std::string, std::vector<double>> times;
-  std::optional<FrameFeatures> features;
-  for (FrameSource* source : sessions) {
-    mapper.StartSession(source->info().name, source->info().clock_time);
-    while (std::optional<RgbdFrame> frame = source->Next(&features)) {
-      MappingFrameResult result = features ? mapper.ProcessFrame(*frame, std::move(*features))
-                                           : mapper.ProcessFrame(*frame);
-      times["features"].push_back(result.timings.features_ms);
-      times["lcd"].push_back(result.timings.lcd_ms);
-      times["proximity"].push_back(result.timings.proximity_ms);
-      times["te"].push_back(result.timings.registration_ms);
-      times["optimization"].push_back(result.timings.optimization_ms);
-      times["total"].push_back(result.timings.total_ms);
-      run.frames.push_back(result);
+  {  // the mapper is gone before the map's vocabulary index is built
+    Mapper mapper(options);
+    std::optional<FrameFeatures> features;
+    for (FrameSource* source : sessions) {
+      mapper.StartSession(source->info().name, source->info().clock_time);
+      while (std::optional<RgbdFrame> frame = source->Next(&features)) {
+        MappingFrameResult result = features ? mapper.ProcessFrame(*frame, std::move(*features))
+                                             : mapper.ProcessFrame(*frame);
+        times["features"].push_back(result.timings.features_ms);
+        times["lcd"].push_back(result.timings.lcd_ms);
+        times["proximity"].push_back(result.timings.proximity_ms);
+        times["te"].push_back(result.timings.registration_ms);
+        times["optimization"].push_back(result.timings.optimization_ms);
+        times["total"].push_back(result.timings.total_ms);
+        run.frames.push_back(result);
+      }
     }
+    run.map = mapper.Finish();
+    const LoopClosureDetector& lcd = mapper.loop_closure();
+    run.memory = ComputeMapMemory(
+        run.map, lcd.filter().TransitionBytes() + lcd.filter().num_places() * sizeof(double));
+    // The mapper's live vocabulary, besides the words the map stores.
+    run.memory.words_index_bytes += lcd.vocabulary().MemoryBytes();
   }
-  run.map = mapper.Finish();
-  const LoopClosureDetector& lcd = mapper.loop_closure();
-  run.memory = ComputeMapMemory(
-      run.map, lcd.filter().TransitionBytes() + lcd.filter().num_places() * sizeof(double));
-  // The mapper's live vocabulary, besides the words the map stores.
-  run.memory.words_index_bytes += lcd.vocabulary().MemoryBytes();
   for (auto& [stage, values] : times) run.timings[stage] = SummarizeTimes(values);
+  run.index_build_s = StoreVocabularyIndex(options, &run.map);
   run.wall_s = wall.ElapsedMs() / 1000.0;
   return run;
 }
@@ -149,6 +153,8 @@ LocalizationRun LocalizeSession(const Map& map, MapWords words, FrameSource& ses
   Localizer localizer(map, options, words.ids.empty() ? nullptr : &words);
   words = MapWords();  // imported: the vocabulary's index holds them now
   LocalizationRun run;
+  run.setup_s = wall.ElapsedMs() / 1000.0;
+  run.index_restore = localizer.loop_closure().vocabulary().index_restore();
   std::vector<std::optional<Rigid3d>> truth;
   std::vector<Eigen::Vector3d> positions;
   std::map<std::string, std::vector<double>> times;

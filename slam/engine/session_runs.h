@@ -73,6 +73,9 @@ struct MappingRun {
   MapMemory memory;
   std::vector<MappingFrameResult> frames;
   std::map<std::string, StageTimingSummary> timings;  // "features", "lcd", ...
+  // Building the vocabulary index stored with the map (vocabulary_index.h),
+  // part of wall_s.
+  double index_build_s = 0.0;
   double wall_s = 0.0;
 };
 
@@ -90,6 +93,10 @@ struct LocalizationRun {
   MapMemory memory;
   LocalizationSummary summary;
   std::map<std::string, StageTimingSummary> timings;  // "features", "lcd", "te", "lcd_te", ...
+  // How the localizer's vocabulary index was obtained: restored from the
+  // map's stored index, or built (with the reason), and how long it took.
+  IndexRestore index_restore;
+  double setup_s = 0.0;  // the localizer's construction (index restore included)
   double wall_s = 0.0;
 };
 

@@ -234,6 +234,7 @@ void EngineJobExecutor::BuildMapJob(const Job& job, const fs::path& job_dir) {
   summary.mean_times_ms.features = extraction_ms;
   summary.mean_times_ms.total += extraction_ms;
   summary.build_wall_s = run.wall_s;
+  summary.index_build_s = run.index_build_s;
   WriteJsonRows(job_dir / kFramesFile, rows);
   WriteSummary(job_dir, summary);
 }
@@ -242,12 +243,12 @@ void EngineJobExecutor::Localize(const Job& job, const fs::path& job_dir) {
   const EngineOptions options = EngineOptionsForFeature(engine_, FeatureSetupByLabel(job.feature));
   const std::string map_file =
       (OutputDir(output_dir_, "map/" + job.feature + "/" + job.map.label) / kMapFile).string();
-  // The words apart: the localizer imports them and lets them go, so the job
-  // holds them once.
-  MapAndWords loaded = LoadMapAndWords(map_file, options.LocalizationMapLoad());
+  // The words apart: the localizer imports its copy of them (the rows are
+  // shared, not copied) into its index.
+  const SharedMap shared = maps_.Get(map_file, options.LocalizationMapLoad());
+  const MapAndWords& loaded = *shared.loaded;
   FeatureCacheReader source(CacheFile(job.extractor, job.session));
-  const LocalizationRun run =
-      LocalizeSession(loaded.map, std::move(loaded.words), source, options);
+  const LocalizationRun run = LocalizeSession(loaded.map, MapWords(loaded.words), source, options);
 
   LocalizationJobSummary summary;
   const RelocalizationSummary& r = run.summary.relocalization;
@@ -283,6 +284,12 @@ void EngineJobExecutor::Localize(const Job& job, const fs::path& job_dir) {
     summary.median_lcd_te_ms = it->second.median_ms;
   }
   summary.memory_bytes = MemoryComponents(run.memory);
+  summary.map_load_s = shared.load_s;
+  summary.map_from_cache = shared.from_cache;
+  summary.localizer_setup_s = run.setup_s;
+  summary.index_restore_s = run.index_restore.seconds;
+  summary.index_restored = run.index_restore.restored;
+  summary.index_rebuild_reason = run.index_restore.rebuild_reason;
   // Features came from the cache: their extraction time is the extract job's.
   summary.mean_times_ms.features = ExtractionMeanMs(job.extractor, job.session);
   summary.mean_times_ms.total += summary.mean_times_ms.features;

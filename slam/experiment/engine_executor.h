@@ -5,7 +5,8 @@
 //             reduction for "1-2-3-4-5-6" maps), saves map.db, its summary,
 //             the per-frame mapping records and the graph for the figures;
 //   localize  re-localizes one cached session on a saved map and writes the
-//             per-frame records, the corrected trajectory and the summary.
+//             per-frame records, the corrected trajectory and the summary;
+//             the jobs on one map share its loaded copy (loaded_map_cache.h).
 // Jobs only share files, so any number can run at once.
 #pragma once
 
@@ -17,6 +18,7 @@
 #include "slam/engine/engine_options.h"
 #include "slam/experiment/experiment_config.h"
 #include "slam/experiment/job_runner.h"
+#include "slam/experiment/loaded_map_cache.h"
 #include "slam/io/dataset_reader.h"
 
 namespace duskmap {
@@ -54,6 +56,7 @@ class EngineJobExecutor : public JobExecutor {
   const DatasetReader& dataset_;
   std::filesystem::path output_dir_;
   std::mutex dataset_mutex_;  // serialises OpenSession
+  LoadedMapCache maps_{2};    // maps of the localization jobs running now
 };
 
 }  // namespace duskmap

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cstdlib>
 #include <limits>
+#include <map>
 #include <set>
+#include <string>
+#include <vector>
 
 #include "slam/core/check.h"
 
@@ -130,6 +133,38 @@ int ParseClockMinutes(const std::string& hh_mm) {
   return hours * 60 + minutes;
 }
 
+namespace {
+
+// Moves the localization jobs of each map next to each other, where the last
+// of them was: every dependency of the group is then still listed before it,
+// and the runner (which starts the first runnable job in list order) runs a
+// map's localizations one after the other, sharing its loaded copy.
+void GroupLocalizationsByMap(ExperimentPlan* plan) {
+  std::map<std::string, size_t> last_of_map;
+  for (size_t i = 0; i < plan->jobs.size(); ++i) {
+    if (plan->jobs[i].kind == JobKind::kLocalize) last_of_map[plan->jobs[i].depends_on.front()] = i;
+  }
+  std::map<std::string, std::vector<Job>> groups;
+  for (const Job& job : plan->jobs) {
+    if (job.kind == JobKind::kLocalize) groups[job.depends_on.front()].push_back(job);
+  }
+  std::vector<Job> jobs;
+  jobs.reserve(plan->jobs.size());
+  for (size_t i = 0; i < plan->jobs.size(); ++i) {
+    const Job& job = plan->jobs[i];
+    if (job.kind != JobKind::kLocalize) {
+      jobs.push_back(job);
+      continue;
+    }
+    const std::string& map = job.depends_on.front();
+    if (last_of_map.at(map) != i) continue;
+    for (Job& grouped : groups.at(map)) jobs.push_back(std::move(grouped));
+  }
+  plan->jobs = std::move(jobs);
+}
+
+}  // namespace
+
 ExperimentPlan PlanExperiment(const ExperimentOptions& options, const SessionClock& clock) {
   options.Check();
   ExperimentPlan plan;
@@ -154,6 +189,7 @@ ExperimentPlan PlanExperiment(const ExperimentOptions& options, const SessionClo
                                   job_id});
     }
   }
+  GroupLocalizationsByMap(&plan);
   return plan;
 }
 

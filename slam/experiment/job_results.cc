@@ -39,7 +39,13 @@ void to_json(nlohmann::json& json, const LocalizationJobSummary& s) {
           {"matched_session_per_frame", s.matched_session_per_frame},
           {"mean_times_ms", s.mean_times_ms},
           {"median_lcd_te_ms", s.median_lcd_te_ms},
-          {"memory_bytes", s.memory_bytes}};
+          {"memory_bytes", s.memory_bytes},
+          {"map_load_s", s.map_load_s},
+          {"map_from_cache", s.map_from_cache},
+          {"localizer_setup_s", s.localizer_setup_s},
+          {"index_restore_s", s.index_restore_s},
+          {"index_restored", s.index_restored},
+          {"index_rebuild_reason", s.index_rebuild_reason}};
 }
 
 void from_json(const nlohmann::json& json, LocalizationJobSummary& s) {
@@ -58,6 +64,12 @@ void from_json(const nlohmann::json& json, LocalizationJobSummary& s) {
   json.at("mean_times_ms").get_to(s.mean_times_ms);
   json.at("median_lcd_te_ms").get_to(s.median_lcd_te_ms);
   json.at("memory_bytes").get_to(s.memory_bytes);
+  s.map_load_s = json.value("map_load_s", 0.0);
+  s.map_from_cache = json.value("map_from_cache", false);
+  s.localizer_setup_s = json.value("localizer_setup_s", 0.0);
+  s.index_restore_s = json.value("index_restore_s", 0.0);
+  s.index_restored = json.value("index_restored", false);
+  s.index_rebuild_reason = json.value("index_rebuild_reason", std::string());
 }
 
 void to_json(nlohmann::json& json, const MapJobSummary& s) {
@@ -71,7 +83,8 @@ void to_json(nlohmann::json& json, const MapJobSummary& s) {
           {"ate_mm", s.ate_mm},
           {"mean_features", s.mean_features},
           {"mean_times_ms", s.mean_times_ms},
-          {"build_wall_s", s.build_wall_s}};
+          {"build_wall_s", s.build_wall_s},
+          {"index_build_s", s.index_build_s}};
 }
 
 void from_json(const nlohmann::json& json, MapJobSummary& s) {
@@ -86,6 +99,7 @@ void from_json(const nlohmann::json& json, MapJobSummary& s) {
   json.at("mean_features").get_to(s.mean_features);
   json.at("mean_times_ms").get_to(s.mean_times_ms);
   json.at("build_wall_s").get_to(s.build_wall_s);
+  s.index_build_s = json.value("index_build_s", 0.0);
 }
 
 void WriteSummary(const std::filesystem::path& job_dir, const nlohmann::json& summary) {

@@ -45,6 +45,16 @@ struct LocalizationJobSummary {
   // What the localizer held, per component (descriptors, keypoints_points,
   // words_index: the map's words and the imported vocabulary, graph, filter).
   std::map<std::string, size_t> memory_bytes;
+  // Before the first frame: loading the map (0 when another job on the
+  // same map had loaded it: map_from_cache), and building the localizer,
+  // of which restoring (or, without a stored index, building) its
+  // vocabulary index. Summaries written before these existed read as 0.
+  double map_load_s = 0.0;
+  bool map_from_cache = false;
+  double localizer_setup_s = 0.0;
+  double index_restore_s = 0.0;
+  bool index_restored = false;
+  std::string index_rebuild_reason;  // "" when restored
 };
 
 struct MapJobSummary {
@@ -59,6 +69,7 @@ struct MapJobSummary {
   double mean_features = 0.0;
   StageTimesMs mean_times_ms;
   double build_wall_s = 0.0;
+  double index_build_s = 0.0;  // the stored vocabulary index, part of build_wall_s
 };
 
 void to_json(nlohmann::json& json, const StageTimesMs& times);

@@ -434,6 +434,62 @@ ExperimentResults CollectResults(const ExperimentPlan& plan,
   return results;
 }
 
+// Where a localization job's time goes before and besides its frames: map
+// loads (jobs on a map share one loaded copy), the localizer's construction
+// with its vocabulary index (restored from the map, or rebuilt), and the
+// frames' own work; and the index each map stores, built once at mapping.
+ReportTable TimingBudgetTable(const ExperimentOptions& options, const ExperimentResults& results,
+                              const ExperimentPlan& plan) {
+  const std::vector<std::string> rows = {
+      "localization_jobs",      "map_loads",          "map_load_s",
+      "map_load_1+2+3+4+5+6_s", "localizer_setup_s",  "index_restore_s",
+      "index_restore_1+2+3+4+5+6_s", "index_rebuilt_jobs", "frames_s",
+      "index_build_at_mapping_s", "index_build_1+2+3+4+5+6_s"};
+  ReportTable table("Timing budget of the localization jobs (s, wall; per job unless counted): "
+                    "map loads (one per map and worker, the other jobs share it), localizer "
+                    "setup with the vocabulary index restored from the map (or rebuilt), the "
+                    "frames' work from cached features, and the index built once per map at "
+                    "mapping",
+                    rows, options.features, 2);
+  for (const std::string& feature : options.features) {
+    Mean load, load_full, setup, restore, restore_full, frames, build, build_full;
+    int jobs = 0, loads = 0, rebuilt = 0;
+    for (const auto& [id, s] : results.localization) {
+      const Job* job = plan.FindJob(id);
+      if (job == nullptr || job->feature != feature) continue;
+      ++jobs;
+      const bool full = job->map.label == kFullMerge;
+      if (!s.map_from_cache) {
+        ++loads;
+        load.Add(s.map_load_s);
+        if (full) load_full.Add(s.map_load_s);
+      }
+      setup.Add(s.localizer_setup_s);
+      restore.Add(s.index_restore_s);
+      if (full) restore_full.Add(s.index_restore_s);
+      if (!s.index_restored) ++rebuilt;
+      // Per-frame stages without extraction (the features come from the cache).
+      frames.Add(s.num_frames * (s.mean_times_ms.total - s.mean_times_ms.features) / 1000.0);
+    }
+    for (const auto& [id, s] : results.maps) {
+      const Job* job = plan.FindJob(id);
+      if (job == nullptr || job->feature != feature) continue;
+      build.Add(s.index_build_s);
+      if (job->map.label == kFullMerge) build_full.Add(s.index_build_s);
+    }
+    if (jobs == 0) continue;
+    const std::vector<std::pair<std::string, std::optional<double>>> values = {
+        {rows[0], jobs},           {rows[1], loads},          {rows[2], load.Get()},
+        {rows[3], load_full.Get()}, {rows[4], setup.Get()},   {rows[5], restore.Get()},
+        {rows[6], restore_full.Get()}, {rows[7], rebuilt},    {rows[8], frames.Get()},
+        {rows[9], build.Get()},    {rows[10], build_full.Get()}};
+    for (const auto& [row, value] : values) {
+      if (value) table.SetMeasured(row, feature, *value);
+    }
+  }
+  return table;
+}
+
 ExperimentReport BuildReport(const ExperimentOptions& options, const ExperimentPlan& plan,
                              const ExperimentResults& results,
                              const std::optional<PaperReference>& paper) {
@@ -442,6 +498,7 @@ ExperimentReport BuildReport(const ExperimentOptions& options, const ExperimentP
     for (auto& t : RelocalizationTables(options, plan, results, paper)) report.tables.push_back(t);
     for (auto& t : MapTables(options, plan, results, paper)) report.tables.push_back(t);
     report.tables.push_back(TimingTable(options, plan, results, paper));
+    report.tables.push_back(TimingBudgetTable(options, results, plan));
   }
   for (auto& t : ConsecutiveTables(options, plan, results, paper, &report.consecutive_csv)) {
     report.tables.push_back(t);

@@ -234,9 +234,10 @@ void CompactFeatures::ShareRowsWithWords(const std::vector<WordId>& row_words,
   std::vector<float> offsets, steps;
   if (own_rows > 0) codes.create(own_rows, codes_.cols, codes_.type());
   int own = 0;
+  const size_t row_bytes = codes_.cols * codes_.elemSize();
   for (size_t i = 0; i < size(); ++i) {
     if ((mask[i / 64] >> (i % 64)) & 1u) continue;
-    codes_.row(static_cast<int>(i)).copyTo(codes.row(own++));
+    std::memcpy(codes.ptr(own++), codes_.ptr(static_cast<int>(i)), row_bytes);
     if (Quantized()) {
       offsets.push_back(row_offsets_[i]);
       steps.push_back(row_steps_[i]);

@@ -78,6 +78,13 @@ struct MapWords {
   std::vector<WordId> ids;  // increasing
   cv::Mat descriptors;      // one stored row per id
   WordId next_word_id = 1;  // the id a new word would get (ids are never reused)
+  // The vocabulary's NN index as Vocabulary::Import builds it from these
+  // words (VocabularySnapshot::index_state), stored with the map so that a
+  // load restores it instead of building it; empty when not stored.
+  std::vector<uint8_t> index_state;
+  // Set by the map store when a stored index could not be read (checksum,
+  // version): the reason the vocabulary rebuilds it. "" otherwise.
+  std::string index_problem;
 };
 
 class Map {
@@ -129,6 +136,12 @@ class Map {
   const MapWords& words() const { return words_; }
   // Replaces the stored words (the engine snapshots its vocabulary here).
   void SetWords(MapWords words);
+  // Stores the vocabulary index built from the current words (MapWords::
+  // index_state); the words are unchanged.
+  void SetWordIndexState(std::vector<uint8_t> state) {
+    words_.index_state = std::move(state);
+    words_.index_problem.clear();
+  }
 
  private:
   void CheckDescriptors(const MapNode& node);

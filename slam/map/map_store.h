@@ -1,7 +1,11 @@
 // The map store: one SQLite file holding a Map (sessions, nodes with poses,
 // keypoints, 3D points, descriptors and word ids, links with information
 // matrices, the vocabulary's words, the feature type and its parameters, and
-// the schema version).
+// the schema version), and, when the map has one, the vocabulary's NN index
+// (table word_index: a format version, the byte count, a 64-bit checksum and
+// the bytes). That table is optional: a map without it loads as before; one
+// whose table fails its checks loads without the index, the reason in
+// MapWords::index_problem, and the vocabulary builds the index again.
 //
 // Saving is transactional at the file level: the map is written to
 // "<path>.saving", flushed to disk (fsync), then renamed over <path> and the
@@ -54,7 +58,9 @@ MapWords LoadMapWords(const std::string& path, const MapLoadOptions& options = M
 
 // The map without its words plus the words apart (as load_words = false
 // followed by LoadMapWords), from one opening and one integrity check of the
-// file: what a localizer that imports the words and lets them go needs.
+// file: what a localizer that imports the words and lets them go needs. The
+// words and the integrity check are read on their own connections beside the
+// nodes (LoadMap does the same).
 struct MapAndWords {
   Map map;
   MapWords words;

@@ -18,6 +18,8 @@ VocabularySnapshot MapVocabularySnapshot(const Map& map, const MapWords& words) 
   snapshot.word_ids = words.ids;
   snapshot.descriptors = words.descriptors;
   snapshot.next_word_id = words.next_word_id;
+  snapshot.index_state = words.index_state;
+  snapshot.index_state_problem = words.index_problem;
   for (const auto& [id, node] : map.nodes()) {
     SLAM_THROW_IF_NOT(InputError, node.word_counts.size() == node.word_ids.size())
         << "map vocabulary: node " << id << " has " << node.word_counts.size()

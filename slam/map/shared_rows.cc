@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstring>
+#include <exception>
+#include <future>
 #include <functional>
 #include <string_view>
 #include <utility>
@@ -22,9 +24,20 @@ uint64_t RowHash(const uint8_t* row, size_t bytes) {
 MapWordsRowSource::MapWordsRowSource(const MapWords& words, WordRowFormat format)
     : words_(words), format_(format) {
   SLAM_CHECK(words.descriptors.rows == static_cast<int>(words.ids.size()));
+  if (!words.ids.empty() && words.ids.front() > 0 &&
+      static_cast<size_t>(words.ids.back()) <= 4 * words.ids.size() + 1024) {
+    row_of_id_.assign(static_cast<size_t>(words.ids.back()) + 1, -1);
+    for (size_t r = 0; r < words.ids.size(); ++r) row_of_id_[words.ids[r]] = static_cast<int32_t>(r);
+  }
 }
 
 const uint8_t* MapWordsRowSource::FindStoredRow(WordId word) const {
+  if (!row_of_id_.empty()) {
+    if (word <= 0 || static_cast<size_t>(word) >= row_of_id_.size() || row_of_id_[word] < 0) {
+      return nullptr;
+    }
+    return words_.descriptors.ptr(row_of_id_[word]);
+  }
   auto it = std::lower_bound(words_.ids.begin(), words_.ids.end(), word);
   if (it == words_.ids.end() || *it != word) return nullptr;
   return words_.descriptors.ptr(static_cast<int>(it - words_.ids.begin()));
@@ -46,37 +59,72 @@ SharedRowsSummary ShareNodeRowsWithWords(const MapWords& words, Map* map) {
       << "ShareNodeRowsWithWords: word rows of " << word_row_bytes
       << " bytes, the map's format needs " << row_bytes;
   const MapWordsRowSource source(words, format);
-  // (hash, row) of every word, sorted: equal rows are found by hash, then
-  // compared byte for byte.
-  std::vector<std::pair<uint64_t, int>> by_hash(words.ids.size());
+  // Every word's row in an open-addressing table keyed by the row's hash
+  // (one cache miss per lookup; a node map holds a million rows). Words are
+  // inserted in id order and probed in insertion order, so of two words
+  // with the same bytes the first is found.
+  size_t slots = 1;
+  while (slots < 2 * words.ids.size()) slots <<= 1;
+  const size_t mask = slots - 1;
+  struct Slot {
+    uint64_t hash = 0;
+    int32_t row = -1;  // -1: empty
+  };
+  std::vector<Slot> table(slots);
   for (int r = 0; r < static_cast<int>(words.ids.size()); ++r) {
-    by_hash[r] = {RowHash(words.descriptors.ptr(r), row_bytes), r};
+    const uint64_t hash = RowHash(words.descriptors.ptr(r), row_bytes);
+    size_t at = hash & mask;
+    while (table[at].row >= 0) at = (at + 1) & mask;
+    table[at] = {hash, r};
   }
-  std::sort(by_hash.begin(), by_hash.end());
-  std::vector<uint8_t> row(row_bytes);
-  std::vector<WordId> row_words;
-  summary.bytes_after = 0;
-  for (const auto& [id, unused] : map->nodes()) {
-    CompactFeatures& features = map->mutable_node(id).features;
-    SLAM_THROW_IF_NOT(InputError, !features.has_shared_rows())
-        << "ShareNodeRowsWithWords: node " << id << " already shares rows";
-    row_words.assign(features.size(), kNoWord);
-    bool any = false;
-    for (size_t i = 0; i < features.size(); ++i) {
-      if (!features.RowAsStoredWord(i, format, row.data())) break;  // no word can hold it
-      const uint64_t hash = RowHash(row.data(), row_bytes);
-      auto it = std::lower_bound(by_hash.begin(), by_hash.end(), std::make_pair(hash, -1));
-      for (; it != by_hash.end() && it->first == hash; ++it) {
-        if (std::memcmp(words.descriptors.ptr(it->second), row.data(), row_bytes) == 0) {
-          row_words[i] = words.ids[it->second];
-          any = true;
-          break;
-        }
+  auto find = [&](const uint8_t* row) -> int {
+    const uint64_t hash = RowHash(row, row_bytes);
+    for (size_t at = hash & mask; table[at].row >= 0; at = (at + 1) & mask) {
+      if (table[at].hash == hash &&
+          std::memcmp(words.descriptors.ptr(table[at].row), row, row_bytes) == 0) {
+        return table[at].row;
       }
     }
-    if (any) features.ShareRowsWithWords(row_words, source);
-    summary.shared_rows += features.num_shared_rows();
-    summary.bytes_after += features.DescriptorMemoryBytes();
+    return -1;
+  };
+  // Nodes are independent: two threads share them out (the lookup table and
+  // the words are only read), each node's result the same either way.
+  std::vector<std::pair<NodeId, CompactFeatures*>> nodes;
+  for (const auto& [id, unused] : map->nodes()) nodes.push_back({id, &map->mutable_node(id).features});
+  auto share = [&](size_t begin, size_t end) {
+    std::vector<uint8_t> row(row_bytes);
+    std::vector<WordId> row_words;
+    for (size_t n = begin; n < end; ++n) {
+      CompactFeatures& features = *nodes[n].second;
+      SLAM_THROW_IF_NOT(InputError, !features.has_shared_rows())
+          << "ShareNodeRowsWithWords: node " << nodes[n].first << " already shares rows";
+      row_words.assign(features.size(), kNoWord);
+      bool any = false;
+      for (size_t i = 0; i < features.size(); ++i) {
+        if (!features.RowAsStoredWord(i, format, row.data())) break;  // no word can hold it
+        const int found = find(row.data());
+        if (found >= 0) {
+          row_words[i] = words.ids[found];
+          any = true;
+        }
+      }
+      if (any) features.ShareRowsWithWords(row_words, source);
+    }
+  };
+  const size_t half = nodes.size() / 2;
+  std::future<void> second = std::async(std::launch::async, share, half, nodes.size());
+  std::exception_ptr first_error;
+  try {
+    share(0, half);
+  } catch (...) {
+    first_error = std::current_exception();
+  }
+  second.get();
+  if (first_error) std::rethrow_exception(first_error);
+  summary.bytes_after = 0;
+  for (const auto& [id, features] : nodes) {
+    summary.shared_rows += features->num_shared_rows();
+    summary.bytes_after += features->DescriptorMemoryBytes();
   }
   return summary;
 }

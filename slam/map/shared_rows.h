@@ -25,6 +25,10 @@ class MapWordsRowSource : public WordRowSource {
  private:
   const MapWords& words_;
   WordRowFormat format_;
+  // Row of each id (-1: none) when ids are dense enough for a table (a map's
+  // are: ids are given in creation order and few words are removed);
+  // otherwise empty and rows are found by binary search.
+  std::vector<int32_t> row_of_id_;
 };
 
 struct SharedRowsSummary {

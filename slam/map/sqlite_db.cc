@@ -101,4 +101,10 @@ std::vector<uint8_t> SqliteStatement::Blob(int column) const {
   return blob;
 }
 
+const uint8_t* SqliteStatement::BlobData(int column, size_t* bytes) const {
+  const void* data = sqlite3_column_blob(statement_, column);
+  *bytes = static_cast<size_t>(sqlite3_column_bytes(statement_, column));
+  return static_cast<const uint8_t*>(data);
+}
+
 }  // namespace duskmap::mapdb

@@ -61,6 +61,9 @@ class SqliteStatement {
   double Double(int column) const;
   std::string Text(int column) const;
   std::vector<uint8_t> Blob(int column) const;
+  // The blob without a copy: valid until the next Step, Reset or column
+  // access of this statement. `*bytes` gets its size (nullptr when empty).
+  const uint8_t* BlobData(int column, size_t* bytes) const;
 
  private:
   SqliteDatabase* db_;

@@ -100,6 +100,18 @@ std::vector<TwoNearest> BruteForceBinary(const cv::Mat& query, const cv::Mat& tr
   return result;
 }
 
+// Exact 2-NN on the L1 of the byte values (binary_distance byte_l1).
+std::vector<TwoNearest> BruteForceByteL1(const cv::Mat& query, const cv::Mat& train) {
+  std::vector<TwoNearest> result(query.rows);
+  for (int i = 0; i < query.rows; ++i) {
+    const uint8_t* a = query.ptr<uint8_t>(i);
+    for (int j = 0; j < train.rows; ++j) {
+      Offer(j, ByteL1Distance(a, train.ptr<uint8_t>(j), query.cols), &result[i]);
+    }
+  }
+  return result;
+}
+
 std::vector<TwoNearest> KdTreeFloat(const NndrMatcherOptions& options, const cv::Mat& query,
                                     const cv::Mat& train) {
   // OpenCV's FLANN draws its random split choices from std::rand(); seeding
@@ -194,6 +206,8 @@ std::vector<cv::DMatch> NndrMatcher::Match(const FrameFeatures& query, const cv:
           ? KdTreeFloat(options_, query.descriptors, train.descriptors)
       : train.kind == DescriptorKind::kFloat
           ? BruteForceFloat(query.descriptors, train.descriptors)
+      : options_.binary_distance == BinaryDistance::kByteL1
+          ? BruteForceByteL1(query.descriptors, train.descriptors)
           : BruteForceBinary(query.descriptors, train.descriptors);
   const double ratio = options_.RatioFor(train.kind);
   for (int i = 0; i < static_cast<int>(neighbours.size()); ++i) {

@@ -3,7 +3,8 @@
 // (spec 6.2): a map feature matched by more than one query feature is dropped
 // together with all those matches.
 //
-// Distances: squared L2 for float descriptors, Hamming for binary ones. The
+// Distances: squared L2 for float descriptors, Hamming or byte L1 for binary
+// ones (NndrMatcherOptions::binary_distance). The
 // ratio is applied to those distances as the reference does (Vis/CorNNDR on
 // squared L2), so a float ratio of 0.6 is 0.775 on plain Euclidean distance.
 // The test is strict (d1 < ratio * d2), so exact ties (d2 == 0) never match.
@@ -15,6 +16,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "slam/features/binary_distance.h"
 #include "slam/features/feature_matcher.h"
 #include "slam/features/frame_features.h"
 
@@ -28,7 +30,11 @@ enum class NndrSearch {
 
 struct NndrMatcherOptions {
   double float_ratio = 0.6;   // on squared L2 distance (paper's runs with float descriptors)
-  double binary_ratio = 0.8;  // on Hamming distance (paper's runs with binary descriptors)
+  double binary_ratio = 0.8;  // on the binary distance (paper's runs with binary descriptors)
+  // How binary descriptors are compared (binary_distance.h): Hamming, or the
+  // L1 of the byte values as the reference's KD-tree matching does with
+  // Kp/ByteToFloat (the paper's runs). Both searches are exact here.
+  BinaryDistance binary_distance = BinaryDistance::kHamming;
   NndrSearch search = NndrSearch::kAuto;
   int kd_min_train_size = 5000;  // kAuto uses the KD-tree from this many map features on
   int kd_trees = 4;             // FLANN randomized trees (reference: 4)
@@ -46,11 +52,13 @@ struct NndrMatcherOptions {
 struct TwoNearest {
   int best = -1;
   int second = -1;
-  double best_distance = 0.0;    // squared L2 or Hamming
-  double second_distance = 0.0;  // squared L2 or Hamming
+  double best_distance = 0.0;    // squared L2, Hamming or byte L1
+  double second_distance = 0.0;  // squared L2, Hamming or byte L1
 };
 
-// Distance between two descriptor rows as the ratio test uses it.
+// Distance between two descriptor rows as the guess-window ratio test uses
+// it: squared L2, or Hamming for binary rows (the reference's BFMatcher,
+// whatever Kp/ByteToFloat says).
 double DescriptorDistance(const cv::Mat& a, int row_a, const cv::Mat& b, int row_b,
                           DescriptorKind kind);
 

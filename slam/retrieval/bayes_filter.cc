@@ -46,7 +46,9 @@ void BayesFilter::AddPlace(NodeId node) {
   posterior_[slot] = 0.0;  // a new place starts with no mass (§4.3)
   columns_[slot] = Column();
   slot_of_.emplace(node, slot);
-  InvalidateAround(node);
+  // Before the first column is built every column is invalid anyway (a map's
+  // places being imported): no neighbourhood needs to be searched.
+  if (any_column_built_) InvalidateAround(node);
 }
 
 bool BayesFilter::RemovePlace(NodeId node) {
@@ -119,6 +121,7 @@ void BayesFilter::BuildColumn(uint32_t slot) {
   }
   column.graph_version = graph_->Version(node);
   column.valid = true;
+  any_column_built_ = true;
 }
 
 void BayesFilter::Predict(std::vector<double>* prior) const {

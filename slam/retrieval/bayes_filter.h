@@ -86,6 +86,7 @@ class BayesFilter {
   double virtual_posterior_ = 1.0;
   bool has_posterior_ = false;
   int columns_rebuilt_ = 0;
+  bool any_column_built_ = false;  // once true, new places invalidate their neighbours
 };
 
 }  // namespace duskmap

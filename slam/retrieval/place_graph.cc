@@ -50,6 +50,9 @@ void PlaceGraph::AddLink(NodeId a, NodeId b, LinkType type) {
   edges_a.push_back({b, type});
   nodes_.at(b).edges.push_back({a, type});
   if (LinkCost(type) < 0) return;  // proximity links change no neighbourhood
+  // Nothing has read a neighbourhood or a version yet (a map's links being
+  // added after its nodes): nothing cached can be stale.
+  if (!observed_) return;
   // Every node whose neighbourhood can change is within max_margin of a or b
   // in the new graph (margins are symmetric).
   Invalidate(Search(a));
@@ -59,7 +62,7 @@ void PlaceGraph::AddLink(NodeId a, NodeId b, LinkType type) {
 bool PlaceGraph::RemoveNode(NodeId node) {
   auto it = nodes_.find(node);
   if (it == nodes_.end()) return false;
-  Invalidate(Search(node));
+  if (observed_) Invalidate(Search(node));
   for (const Edge& e : it->second.edges) {
     auto& other = nodes_.at(e.other).edges;
     other.erase(std::remove_if(other.begin(), other.end(),
@@ -72,7 +75,10 @@ bool PlaceGraph::RemoveNode(NodeId node) {
 
 SessionId PlaceGraph::Session(NodeId node) const { return At(node).session; }
 
-uint64_t PlaceGraph::Version(NodeId node) const { return At(node).version; }
+uint64_t PlaceGraph::Version(NodeId node) const {
+  observed_ = true;
+  return At(node).version;
+}
 
 void PlaceGraph::Invalidate(const std::vector<NodeMargin>& nodes) {
   for (const NodeMargin& m : nodes) {
@@ -114,6 +120,7 @@ std::vector<NodeMargin> PlaceGraph::Search(NodeId start) const {
 }
 
 const std::vector<NodeMargin>& PlaceGraph::Neighbourhood(NodeId node) const {
+  observed_ = true;
   const Entry& e = At(node);
   if (!e.cached) {
     e.neighbourhood = Search(node);

@@ -68,6 +68,10 @@ class PlaceGraph {
   int max_margin_;
   std::unordered_map<NodeId, Entry> nodes_;
   uint64_t next_version_ = 1;
+  // Whether a neighbourhood or a version was read: until then links and
+  // removals invalidate nothing (a map's links added after its nodes cost
+  // no searches).
+  mutable bool observed_ = false;
 };
 
 }  // namespace duskmap

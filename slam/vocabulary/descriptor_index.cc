@@ -5,6 +5,7 @@
 
 #include <flann/flann.hpp>
 
+#include "slam/core/byte_buffer.h"
 #include "slam/core/check.h"
 #include "slam/vocabulary/kd_forest.h"
 
@@ -112,6 +113,12 @@ void DescriptorIndexOptions::Check() const {
       << "DescriptorIndexOptions.hierarchical_branching must be >= 2, got " << hierarchical_branching;
   SLAM_THROW_IF_NOT(ConfigError, hierarchical_trees >= 1)
       << "DescriptorIndexOptions.hierarchical_trees must be >= 1, got " << hierarchical_trees;
+  SLAM_THROW_IF_NOT(ConfigError, binary_distance == BinaryDistance::kHamming ||
+                                    binary_kind == IndexKind::kBitKdTree ||
+                                    binary_kind == IndexKind::kLinear)
+      << "DescriptorIndexOptions.binary_distance: byte_l1 needs binary_kind bit_kdtree or "
+         "linear; "
+      << IndexKindName(binary_kind) << " compares by Hamming only (set binary_distance hamming)";
   SLAM_THROW_IF_NOT(ConfigError, hierarchical_leaf_size >= 1)
       << "DescriptorIndexOptions.hierarchical_leaf_size must be >= 1, got " << hierarchical_leaf_size;
 }
@@ -134,6 +141,7 @@ class DescriptorIndex::Backend {
       o.leaf_size = options.kd_leaf_size;
       o.rebuild_factor = options.rebalancing_factor;
       o.seed = options.seed;
+      o.binary_distance = options.binary_distance;
       forest_ = std::make_unique<KdForest>(o, format_, cols);
     }
   }
@@ -228,6 +236,17 @@ class DescriptorIndex::Backend {
 
   void Compact() {
     if (forest_) forest_->CompactLeaves();
+  }
+  bool CanSaveState() const { return forest_ != nullptr; }
+  void AppendForestState(std::vector<uint8_t>* out) const { forest_->AppendState(out); }
+  bool RestoreForestState(const uint8_t* state, size_t size, const std::vector<WordId>& ids,
+                          const uint8_t* rows, std::string* problem) {
+    if (forest_ == nullptr || forest_->size() != 0) {
+      *problem = "this index kind (" + std::string(IndexKindName(index_kind_)) +
+                 ") is not restored from a stored state";
+      return false;
+    }
+    return forest_->RestoreState(state, size, ids, rows, problem);
   }
   void ReserveIds(WordId max_id) {
     if (forest_) forest_->ReserveIds(max_id);
@@ -329,7 +348,8 @@ class DescriptorIndex::Backend {
     WordNeighbour best[kNeighbours];
     int count = 0;
     for (size_t s = 0; s < linear_words_.size(); ++s) {
-      const float d = WordDistance(format_, query, &linear_rows_[s * stored_bytes_], cols_);
+      const float d = WordDistance(format_, query, &linear_rows_[s * stored_bytes_], cols_,
+                                   options_.binary_distance);
       const WordNeighbour cand{linear_words_[s], d};
       auto closer = [](const WordNeighbour& a, const WordNeighbour& b) {
         return a.distance < b.distance || (a.distance == b.distance && a.word < b.word);
@@ -417,5 +437,47 @@ size_t DescriptorIndex::MemoryBytes() const { return backend_->MemoryBytes(); }
 void DescriptorIndex::Compact() { backend_->Compact(); }
 
 void DescriptorIndex::ReserveIds(WordId max_id) { backend_->ReserveIds(max_id); }
+
+namespace {
+constexpr uint32_t kIndexStateMagic = 0x31584944;  // "DIX1"
+}  // namespace
+
+bool DescriptorIndex::CanSaveState() const { return backend_->CanSaveState(); }
+
+std::vector<uint8_t> DescriptorIndex::SaveState() const {
+  std::vector<uint8_t> state;
+  if (!CanSaveState()) return state;
+  ByteWriter w(&state);
+  w.Put(kIndexStateMagic);
+  w.Put<int32_t>(static_cast<int32_t>(index_kind()));
+  w.Put<int32_t>(static_cast<int32_t>(kind_));
+  w.Put<int32_t>(static_cast<int32_t>(format()));
+  w.Put<int32_t>(cols_);
+  backend_->AppendForestState(&state);
+  return state;
+}
+
+bool DescriptorIndex::RestoreState(const std::vector<uint8_t>& state,
+                                   const std::vector<WordId>& ids, const uint8_t* rows,
+                                   std::string* problem) {
+  SLAM_CHECK(problem != nullptr);
+  ByteReader r(state.data(), state.size());
+  uint32_t magic = 0;
+  int32_t index_kind = 0, kind = 0, format = 0, cols = 0;
+  if (!r.Get(&magic) || magic != kIndexStateMagic || !r.Get(&index_kind) || !r.Get(&kind) ||
+      !r.Get(&format) || !r.Get(&cols)) {
+    *problem = "not a stored descriptor index";
+    return false;
+  }
+  if (index_kind != static_cast<int32_t>(this->index_kind()) ||
+      kind != static_cast<int32_t>(kind_) || format != static_cast<int32_t>(this->format()) ||
+      cols != cols_) {
+    *problem = std::string("the stored index is of another kind or row shape (this run uses ") +
+               IndexKindName(this->index_kind()) + " over " + std::to_string(cols_) + " columns)";
+    return false;
+  }
+  const size_t header = state.size() - r.remaining();
+  return backend_->RestoreForestState(state.data() + header, r.remaining(), ids, rows, problem);
+}
 
 }  // namespace duskmap

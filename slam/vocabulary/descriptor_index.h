@@ -19,7 +19,9 @@ enum class IndexKind {
   kKdTree,        // float only: seeded randomized KD-trees (KdForest), squared L2 —
                   // reference Kp/NNStrategy=1
   kBitKdTree,     // binary only: KdForest over the bits (one dimension per bit), Hamming —
-                  // the reference's byte-to-bits KD-tree with L1, Kp/NNStrategy=1
+                  // the reference's byte-to-bits KD-tree with L1, Kp/NNStrategy=1; with
+                  // binary_distance byte_l1 over the bytes (one dimension per byte), L1 —
+                  // its Kp/ByteToFloat
   kLsh,           // binary only: FLANN multi-probe LSH (Kp/NNStrategy=2); NOT deterministic
                   // (Debian's FLANN shuffles with std::random_device)
   kHierarchical,  // binary only: FLANN hierarchical clustering, Hamming; NOT deterministic
@@ -48,12 +50,17 @@ struct DescriptorIndexOptions {
   // per-row offset and step (kdtree and linear kinds; a quarter of the
   // bytes, distances against the quantized values). Binary words are exact.
   DescriptorStorage float_storage = DescriptorStorage::kFloat32;
+  // How binary words are compared (binary_distance.h): Hamming, the
+  // reference's default, or the L1 of the byte values, its Kp/ByteToFloat
+  // (the paper's runs). For the bit_kdtree and linear kinds; LSH and
+  // hierarchical clustering compare by Hamming only.
+  BinaryDistance binary_distance = BinaryDistance::kHamming;
 
   void Check() const;
 };
 
-// One neighbour found by a search: the word and its distance (squared L2 or
-// Hamming, see DescriptorDistance).
+// One neighbour found by a search: the word and its distance (squared L2,
+// Hamming or byte L1, see DescriptorDistance).
 struct WordNeighbour {
   WordId word = kNoWord;
   float distance = 0.0f;
@@ -102,6 +109,21 @@ class DescriptorIndex {
   void Compact();
   // Reserves id bookkeeping for ids up to `max_id`.
   void ReserveIds(WordId max_id);
+
+  // Whether SaveState can store this index: the KD-tree kinds (kdtree,
+  // bit_kdtree), which are deterministic; the FLANN kinds rebuild on load.
+  bool CanSaveState() const;
+  // The built index as bytes (kind, row shape, then the KD-forest's
+  // structure, kd_forest.h); empty when !CanSaveState().
+  std::vector<uint8_t> SaveState() const;
+  // Restores SaveState's bytes into this index, which must be empty, with
+  // its words given as `ids` (strictly increasing) and their stored rows
+  // (`rows`, contiguous, stored_row_bytes() each). The result searches,
+  // grows and rebuilds exactly as the saved index. Returns false with
+  // `*problem` set, the index left empty, when the bytes belong to another
+  // kind, options or words, or are damaged.
+  bool RestoreState(const std::vector<uint8_t>& state, const std::vector<WordId>& ids,
+                    const uint8_t* rows, std::string* problem);
 
   size_t size() const;          // live words
   int rebuild_count() const;    // full builds so far (first build included)

@@ -43,7 +43,7 @@ void* AllocateHugePageAdvised(size_t bytes) {
 
 KdForest::KdForest(const KdForestOptions& options, WordRowFormat format, int cols)
     : options_(options), format_(format), cols_(cols),
-      dims_(format == WordRowFormat::kBinary ? cols * 8 : cols),
+      dims_(WordRowDims(format, cols, options.binary_distance)),
       row_bytes_(WordRowBytes(format, cols)),
       rng_(options.seed) {
   SLAM_CHECK(options.trees >= 1 && options.checks >= 1 && options.leaf_size >= 1);
@@ -52,10 +52,13 @@ KdForest::KdForest(const KdForestOptions& options, WordRowFormat format, int col
 
 float KdForest::QueryValue(const uint8_t* q, int dim) const {
   if (format_ != WordRowFormat::kBinary) return reinterpret_cast<const float*>(q)[dim];
+  if (options_.binary_distance == BinaryDistance::kByteL1) return static_cast<float>(q[dim]);
   return static_cast<float>((q[dim >> 3] >> (dim & 7)) & 1);
 }
 
-float KdForest::Value(uint32_t p, int dim) const { return WordRowValue(format_, Data(p), dim); }
+float KdForest::Value(uint32_t p, int dim) const {
+  return WordRowValue(format_, Data(p), dim, options_.binary_distance);
+}
 
 const uint8_t* KdForest::Row(WordId id) const {
   const uint32_t p = slot_.Find(id);
@@ -369,16 +372,16 @@ void KdForest::CheckLeaf(int32_t n, const uint8_t* q, int* checks, KdNeighbour b
     ++*checks;
     const uint8_t* row = Data(p);
     if (*found < 2) {
-      best[(*found)++] = {id, WordDistance(format_, q, row, cols_)};
+      best[(*found)++] = {id, WordDistance(format_, q, row, cols_, options_.binary_distance)};
       if (*found == 2 && Closer(best[1], best[0])) std::swap(best[0], best[1]);
       continue;
     }
     // Only a row at most as far as the second best can change the result;
     // the bounded distance is exact below the bound and >= it otherwise.
     const float bound = best[1].distance;
-    float d = WordDistanceBounded(format_, q, row, cols_, bound);
+    float d = WordDistanceBounded(format_, q, row, cols_, bound, options_.binary_distance);
     if (d > bound) continue;
-    if (d == bound) d = WordDistance(format_, q, row, cols_);  // a tie decides by id
+    if (d == bound) d = WordDistance(format_, q, row, cols_, options_.binary_distance);  // a tie decides by id
     const KdNeighbour c{id, d};
     if (Closer(c, best[1])) {
       best[1] = c;

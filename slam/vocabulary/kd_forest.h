@@ -7,13 +7,16 @@
 //
 // Float rows are compared with squared L2, stored as floats or quantized to
 // 8 bits (WordRowFormat::kQuantized8: queries stay floats, splits and
-// distances use the quantized values). Binary rows are treated as bit
-// vectors (one dimension per bit, as the reference's byte-to-bits expansion)
-// and compared with Hamming distance directly on the packed bytes.
+// distances use the quantized values). Binary rows are either bit vectors
+// (one dimension per bit, as the reference's byte-to-bits expansion) compared
+// with Hamming distance directly on the packed bytes, or byte vectors (one
+// dimension per byte, its Kp/ByteToFloat) compared by the L1 of the byte
+// values (KdForestOptions::binary_distance).
 #pragma once
 
 #include <cstdint>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 #include "slam/core/random.h"
@@ -54,6 +57,7 @@ struct KdForestOptions {
   int leaf_size = 1;             // rows per leaf before it splits (FLANN: 1)
   double rebuild_factor = 2.0;   // rebuild when rows (removed included) > factor x rows at build
   uint64_t seed = 42;            // all random choices (shuffles, split dimensions)
+  BinaryDistance binary_distance = BinaryDistance::kHamming;  // binary rows only
 };
 
 struct KdNeighbour {
@@ -73,6 +77,8 @@ class KdForest {
   // The stored row; valid until the next Add or Rebuild.
   const uint8_t* Row(WordId id) const;
   WordRowFormat format() const { return format_; }
+  int cols() const { return cols_; }
+  const KdForestOptions& options() const { return options_; }
   // Up to 2 nearest live rows of an extracted query row, nearest first.
   void SearchTwo(const uint8_t* query, std::vector<KdNeighbour>* out) const;
   // Drops removed rows and builds every tree again.
@@ -84,6 +90,21 @@ class KdForest {
   void CompactLeaves();
   // Reserves the id table for ids up to `max_id`.
   void ReserveIds(WordId max_id) { slot_.Reserve(max_id); }
+
+  // The forest's structure as bytes (kd_forest_state.cc): the options that
+  // shape it, the point order, the trees, the build counters and the random
+  // generator's state; not the rows, which the words hold. For a map that
+  // stores its vocabulary's index, so that a load need not build it again.
+  void AppendState(std::vector<uint8_t>* out) const;
+  // Restores AppendState's bytes into this forest, which must be empty:
+  // `ids` (strictly increasing) and `rows` (their stored rows, contiguous,
+  // in the same order) must be the live rows of the saved forest. The
+  // result equals the saved forest: the same searches, the same future
+  // insertions and rebuilds. Returns false with `*problem` set (the forest
+  // left empty) when the bytes were saved with other options, name other
+  // words, or do not describe a valid forest.
+  bool RestoreState(const uint8_t* state, size_t size, const std::vector<WordId>& ids,
+                    const uint8_t* rows, std::string* problem);
 
   size_t size() const { return slot_.size(); }
   int rebuild_count() const { return rebuilds_; }
@@ -116,6 +137,9 @@ class KdForest {
   // The leaf of `tree` that holds (or would hold) point p.
   int32_t LeafOf(int tree, uint32_t p) const;
   void Insert(int tree, uint32_t p);
+  // RestoreState's structural checks: every tree a tree over all points,
+  // every node reached once. "" when valid.
+  std::string CheckStructure() const;
   // Renumbers the points so that the rows of each leaf of the first tree are
   // adjacent in data_ (fewer cache misses per leaf; results are unchanged).
   void RenumberByLeaves();

@@ -22,12 +22,12 @@ struct Candidate {
 // candidates `best[0..*count)` (sorted; index results first on ties). Only a
 // pending word closer than the current second candidate can matter, so
 // distances stop early at that bound.
-void MergePendingCandidates(DescriptorKind kind, int cols, const uint8_t* row,
-                            const std::vector<const uint8_t*>& pending, Candidate best[2],
-                            int* count) {
+void MergePendingCandidates(DescriptorKind kind, BinaryDistance binary, int cols,
+                            const uint8_t* row, const std::vector<const uint8_t*>& pending,
+                            Candidate best[2], int* count) {
   for (size_t k = 0; k < pending.size(); ++k) {
     const float bound = *count < 2 ? std::numeric_limits<float>::infinity() : best[1].distance;
-    const float d = DescriptorDistanceBounded(kind, row, pending[k], cols, bound);
+    const float d = DescriptorDistanceBounded(kind, row, pending[k], cols, bound, binary);
     if (!(d < bound)) continue;
     const Candidate c{PendingId(k), d};
     if (*count < 2) {
@@ -106,7 +106,7 @@ NodeQuantization Vocabulary::Run(const cv::Mat& descriptors, DescriptorKind kind
       for (const WordNeighbour& n : nn[i]) best[count++] = {n.word, n.distance};  // sorted
     }
     if (options_.new_words_compared_together) {
-      MergePendingCandidates(kind, cols, row, pending, best, &count);
+      MergePendingCandidates(kind, options_.index.binary_distance, cols, row, pending, best, &count);
     }
     if (count >= 2 && best[0].distance <= options_.nndr_ratio * best[1].distance) {
       q.words[i] = best[0].word;

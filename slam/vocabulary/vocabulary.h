@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -32,6 +33,14 @@ struct VocabularyOptions {
   void Check() const;
   // Rows a frame needs to be quantized (0 when max_features_per_node is 0).
   int MinFeatures() const;
+};
+
+// How Import obtained the NN index: restored from the snapshot's stored
+// index, or built from the words (with the reason it was not restored).
+struct IndexRestore {
+  bool restored = false;
+  std::string rebuild_reason;  // "" when restored or when there were no words
+  double seconds = 0.0;        // time to restore or build the index
 };
 
 // The quantization of one frame.
@@ -88,7 +97,10 @@ class Vocabulary : public WordRowSource {
   // vocabulary_snapshot.h); Import of the result restores them exactly.
   VocabularySnapshot Export() const;
   // Restores a snapshot into this vocabulary, which must be empty (no node,
-  // no word, no word created yet), then batch-builds the NN index. Throws
+  // no word, no word created yet), then restores the NN index from the
+  // snapshot's index_state or, when there is none or it does not fit (other
+  // options, other words, damaged), batch-builds it; index_restore() says
+  // which, and the two give the same index. Throws
   // InputError naming the problem when the snapshot is inconsistent (ids not
   // increasing, a reference to a missing word, a word nobody references,
   // descriptors of the wrong type or count). The words, ids, references and
@@ -96,6 +108,11 @@ class Vocabulary : public WordRowSource {
   // build, so lookups with few `checks` may differ from the exporting
   // vocabulary's incrementally grown trees (with exhaustive checks they match).
   void Import(const VocabularySnapshot& snapshot);
+  const IndexRestore& index_restore() const { return index_restore_; }
+  // The NN index as bytes for VocabularySnapshot::index_state (empty without
+  // words or for an index kind that is not stored: LSH, hierarchical, linear).
+  // Only an imported vocabulary's index is what Import would build again.
+  std::vector<uint8_t> SaveIndexState() const;
   const VocabularyOptions& options() const { return options_; }
 
   // WordRowSource: the live words' stored rows (nullptr for an absent word;
@@ -112,6 +129,7 @@ class Vocabulary : public WordRowSource {
   std::unique_ptr<DescriptorIndex> index_;  // created with the first non-empty node
   InvertedIndex inverted_;
   WordId next_word_id_ = 1;
+  IndexRestore index_restore_;
 };
 
 }  // namespace duskmap

@@ -3,6 +3,7 @@
 #include <unordered_set>
 
 #include "slam/core/check.h"
+#include "slam/core/timer.h"
 #include "slam/vocabulary/vocabulary.h"
 
 namespace duskmap {
@@ -31,6 +32,10 @@ bool VocabularySnapshot::operator==(const VocabularySnapshot& other) const {
     if (a.node != b.node || a.num_features != b.num_features || a.word_counts != b.word_counts) return false;
   }
   return true;
+}
+
+std::vector<uint8_t> Vocabulary::SaveIndexState() const {
+  return index_ != nullptr && index_->size() > 0 ? index_->SaveState() : std::vector<uint8_t>();
 }
 
 VocabularySnapshot Vocabulary::Export() const {
@@ -126,16 +131,28 @@ void Vocabulary::Import(const VocabularySnapshot& s) {
     // vocabulary's options say (a map decides how its words are stored).
     DescriptorIndexOptions index_options = options_.index;
     index_options.float_storage = s.float_storage;
+    Stopwatch watch;
     index_ = std::make_unique<DescriptorIndex>(index_options, s.kind, s.DescriptorCols());
-    index_->ReserveIds(s.word_ids.back());
     const cv::Mat rows = s.descriptors.isContinuous() ? s.descriptors : s.descriptors.clone();
-    for (size_t i = 0; i < s.word_ids.size(); ++i) {
-      index_->AddStored(s.word_ids[i], rows.ptr<uint8_t>(static_cast<int>(i)));
+    std::string problem = s.index_state_problem;
+    if (problem.empty() && s.index_state.empty()) problem = "no stored index";
+    if (problem.empty() &&
+        index_->RestoreState(s.index_state, s.word_ids, rows.ptr<uint8_t>(0), &problem)) {
+      index_restore_.restored = true;
+    } else {
+      index_restore_.rebuild_reason = problem;
+      // A fresh index, whatever a failed restore left behind.
+      index_ = std::make_unique<DescriptorIndex>(index_options, s.kind, s.DescriptorCols());
+      index_->ReserveIds(s.word_ids.back());
+      for (size_t i = 0; i < s.word_ids.size(); ++i) {
+        index_->AddStored(s.word_ids[i], rows.ptr<uint8_t>(static_cast<int>(i)));
+      }
+      index_->Rebuild();
+      // An imported vocabulary is searched far more than it grows (not at all
+      // when localizing): its index keeps no room for growth.
+      index_->Compact();
     }
-    index_->Rebuild();
-    // An imported vocabulary is searched far more than it grows (not at all
-    // when localizing): its index keeps no room for growth.
-    index_->Compact();
+    index_restore_.seconds = watch.ElapsedMs() / 1000.0;
     inverted_.ReserveWords(s.word_ids.back());
   }
   for (const VocabularyNodeWords& n : s.nodes) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -35,6 +36,13 @@ struct VocabularySnapshot {
   cv::Mat descriptors;
   WordId next_word_id = 1;       // > every word id: ids are never reused
   std::vector<VocabularyNodeWords> nodes;  // increasing node ids
+  // The NN index built from these words by Import (DescriptorIndex::
+  // SaveState bytes), so that Import restores it instead of building it;
+  // empty when not stored. Not part of operator==.
+  std::vector<uint8_t> index_state;
+  // Why a stored index could not be read (e.g. its checksum failed), for the
+  // rebuild notice; "" otherwise.
+  std::string index_state_problem;
 
   WordRowFormat format() const { return WordRowFormatFor(kind, float_storage); }
   // Elements of an extracted descriptor (0 without words).

@@ -187,7 +187,11 @@ void DecodeWordRow(WordRowFormat format, const uint8_t* stored, int cols, uint8_
   DequantizeRow(stored + kScaleBytes, cols, StoredScale(stored), reinterpret_cast<float*>(descriptor));
 }
 
-float WordRowValue(WordRowFormat format, const uint8_t* stored, int dim) {
+int WordRowDims(WordRowFormat format, int cols, BinaryDistance binary) {
+  return format == WordRowFormat::kBinary && binary == BinaryDistance::kHamming ? cols * 8 : cols;
+}
+
+float WordRowValue(WordRowFormat format, const uint8_t* stored, int dim, BinaryDistance binary) {
   switch (format) {
     case WordRowFormat::kFloat32: {
       float v;
@@ -198,13 +202,15 @@ float WordRowValue(WordRowFormat format, const uint8_t* stored, int dim) {
       const RowScale scale = StoredScale(stored);
       return scale.offset + scale.step * static_cast<float>(stored[kScaleBytes + dim]);
     }
-    case WordRowFormat::kBinary: return static_cast<float>((stored[dim >> 3] >> (dim & 7)) & 1);
+    case WordRowFormat::kBinary:
+      if (binary == BinaryDistance::kByteL1) return static_cast<float>(stored[dim]);
+      return static_cast<float>((stored[dim >> 3] >> (dim & 7)) & 1);
   }
   return 0.0f;
 }
 
 float WordDistanceBounded(WordRowFormat format, const uint8_t* query, const uint8_t* stored,
-                          int cols, float bound) {
+                          int cols, float bound, BinaryDistance binary) {
   switch (format) {
     case WordRowFormat::kFloat32:
       return DescriptorDistanceBounded(DescriptorKind::kFloat, query, stored, cols, bound);
@@ -213,7 +219,8 @@ float WordDistanceBounded(WordRowFormat format, const uint8_t* query, const uint
       return QuantizedSquaredL2(reinterpret_cast<const float*>(query), stored + kScaleBytes,
                                 scale.offset, scale.step, cols, bound);
     }
-    case WordRowFormat::kBinary: return DescriptorDistance(DescriptorKind::kBinary, query, stored, cols);
+    case WordRowFormat::kBinary:
+      return DescriptorDistance(DescriptorKind::kBinary, query, stored, cols, binary);
   }
   return 0.0f;
 }
@@ -227,31 +234,25 @@ float QuantizedWordDistanceBaselineSimd(const uint8_t* query, const uint8_t* sto
 }
 }  // namespace detail
 
-float WordDistance(WordRowFormat format, const uint8_t* query, const uint8_t* stored, int cols) {
-  return WordDistanceBounded(format, query, stored, cols, std::numeric_limits<float>::infinity());
+float WordDistance(WordRowFormat format, const uint8_t* query, const uint8_t* stored, int cols,
+                   BinaryDistance binary) {
+  return WordDistanceBounded(format, query, stored, cols, std::numeric_limits<float>::infinity(),
+                             binary);
 }
 
 float DescriptorDistanceBounded(DescriptorKind kind, const uint8_t* a, const uint8_t* b, int cols,
-                                float bound) {
-  if (kind != DescriptorKind::kFloat) return DescriptorDistance(kind, a, b, cols);
+                                float bound, BinaryDistance binary) {
+  if (kind != DescriptorKind::kFloat) return DescriptorDistance(kind, a, b, cols, binary);
   return SquaredL2(reinterpret_cast<const float*>(a), reinterpret_cast<const float*>(b), cols, bound);
 }
 
-float DescriptorDistance(DescriptorKind kind, const uint8_t* a, const uint8_t* b, int cols) {
+float DescriptorDistance(DescriptorKind kind, const uint8_t* a, const uint8_t* b, int cols,
+                         BinaryDistance binary) {
   if (kind == DescriptorKind::kFloat) {
     return SquaredL2(reinterpret_cast<const float*>(a), reinterpret_cast<const float*>(b), cols,
                      std::numeric_limits<float>::infinity());
   }
-  int bits = 0;
-  int i = 0;
-  for (; i + 8 <= cols; i += 8) {
-    uint64_t wa, wb;
-    std::memcpy(&wa, a + i, 8);
-    std::memcpy(&wb, b + i, 8);
-    bits += __builtin_popcountll(wa ^ wb);
-  }
-  for (; i < cols; ++i) bits += __builtin_popcount(static_cast<unsigned>(a[i] ^ b[i]));
-  return static_cast<float>(bits);
+  return static_cast<float>(BinaryRowDistance(binary, a, b, cols));
 }
 
 }  // namespace duskmap

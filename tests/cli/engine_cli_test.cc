@@ -3,11 +3,15 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -93,6 +97,81 @@ TEST_F(EngineCli, BadMapFileIsOneLineError) {
   EXPECT_EQ(r.output.rfind("duskmap: error: ", 0), 0u) << r.output;
   EXPECT_NE(r.output.find("not a duskmap map"), std::string::npos) << r.output;
   EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+}
+
+// Records of a run without their timings, one JSON object per line.
+std::vector<nlohmann::json> RecordsWithoutTimings(const std::string& path) {
+  std::vector<nlohmann::json> out;
+  std::ifstream in(path);
+  for (std::string line; std::getline(in, line);) {
+    nlohmann::json record = nlohmann::json::parse(line);
+    record.erase("timings_ms");
+    out.push_back(record);
+  }
+  return out;
+}
+
+std::string FileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+TEST_F(EngineCli, SeveralSessionsOnOneLoadEqualSeparateRuns) {
+  const std::string map = dir_ + "/multi.db";
+  ASSERT_EQ(RunDuskmap("map --dataset " + dir_ + "/data --sessions 1 --output " + map).exit_code, 0);
+  const std::string saved = FileBytes(map);
+  const Result alone = RunDuskmap("localize --map " + map + " --dataset " + dir_ +
+                                  "/data --session A --records " + dir_ + "/alone_A.jsonl");
+  ASSERT_EQ(alone.exit_code, 0) << alone.output;
+  EXPECT_EQ(alone.output.find("warning"), std::string::npos) << alone.output;
+  // Session 1 first: A's records must not depend on it.
+  const Result both = RunDuskmap("localize --map " + map + " --dataset " + dir_ +
+                                 "/data --session 1 A --records " + dir_ +
+                                 "/multi_{session}.jsonl --summary " + dir_ + "/multi_{session}.json");
+  ASSERT_EQ(both.exit_code, 0) << both.output;
+  EXPECT_EQ(RecordsWithoutTimings(dir_ + "/multi_A.jsonl"), RecordsWithoutTimings(dir_ + "/alone_A.jsonl"));
+  EXPECT_EQ(RecordsWithoutTimings(dir_ + "/multi_1.jsonl").size(), 8u);
+  const auto summary = nlohmann::json::parse(std::ifstream(dir_ + "/multi_A.json"));
+  EXPECT_EQ(summary["session"], "A");
+  EXPECT_TRUE(summary["index_restored"].get<bool>());
+  const auto first = nlohmann::json::parse(std::ifstream(dir_ + "/multi_1.json"));
+  EXPECT_GT(first["map_load_s"].get<double>(), 0.0);  // the one load, on the first session
+  EXPECT_EQ(FileBytes(map), saved) << "localize modified the map";
+
+  // Several sessions need {session} in every output path; a session twice is refused.
+  for (const std::string& args :
+       {std::string(" --session 1 A --records ") + dir_ + "/one.jsonl",
+        std::string(" --session A A")}) {
+    const Result bad = RunDuskmap("localize --map " + map + " --dataset " + dir_ + "/data" + args);
+    EXPECT_EQ(bad.exit_code, 1) << args;
+    EXPECT_EQ(bad.output.rfind("duskmap: error: ", 0), 0u) << bad.output;
+    EXPECT_EQ(std::count(bad.output.begin(), bad.output.end(), '\n'), 1) << bad.output;
+  }
+  EXPECT_FALSE(fs::exists(dir_ + "/one.jsonl"));
+}
+
+TEST_F(EngineCli, DamagedStoredIndexIsRebuiltWithAWarningAndTheMapUntouched) {
+  const std::string map = dir_ + "/damaged.db";
+  ASSERT_EQ(RunDuskmap("map --dataset " + dir_ + "/data --sessions 1 --output " + map).exit_code, 0);
+  const Result good = RunDuskmap("localize --map " + map + " --dataset " + dir_ +
+                                 "/data --session A --records " + dir_ + "/good.jsonl");
+  ASSERT_EQ(good.exit_code, 0) << good.output;
+  // Overwrite the stored index with zeros of the same size (sqlite3's own
+  // shell is not installed; python3 is, for the plots).
+  const std::string sql = "UPDATE word_index SET state = zeroblob(length(state))";
+  ASSERT_EQ(std::system(("python3 -c \"import sqlite3; c = sqlite3.connect('" + map + "'); c.execute('" +
+                         sql + "'); c.commit()\"").c_str()),
+            0);
+  const std::string damaged = FileBytes(map);
+  const Result rebuilt = RunDuskmap("localize --map " + map + " --dataset " + dir_ +
+                                    "/data --session A --records " + dir_ + "/rebuilt.jsonl");
+  ASSERT_EQ(rebuilt.exit_code, 0) << rebuilt.output;
+  EXPECT_NE(rebuilt.output.find("duskmap localize: warning: " + map + ": vocabulary index rebuilt ("),
+            std::string::npos)
+      << rebuilt.output;
+  EXPECT_NE(rebuilt.output.find("fails its checksum"), std::string::npos) << rebuilt.output;
+  EXPECT_EQ(RecordsWithoutTimings(dir_ + "/rebuilt.jsonl"), RecordsWithoutTimings(dir_ + "/good.jsonl"));
+  EXPECT_EQ(FileBytes(map), damaged) << "localize modified the map";
 }
 
 }  // namespace

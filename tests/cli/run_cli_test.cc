@@ -47,7 +47,8 @@ std::map<std::string, std::string> DeterministicTables(const fs::path& report) {
   std::map<std::string, std::string> tables;
   for (const auto& entry : fs::directory_iterator(report / "tables")) {
     const std::string name = entry.path().filename().string();
-    if (name.rfind("per_frame_timings", 0) == 0) continue;
+    // Timings are not deterministic.
+    if (name.rfind("per_frame_timings", 0) == 0 || name.rfind("timing_budget", 0) == 0) continue;
     tables[name] = ReadText(entry.path());
   }
   return tables;

@@ -39,6 +39,17 @@ TEST(EngineOptions, DefaultsAreThePapersSettings) {
   EXPECT_DOUBLE_EQ(EngineOptions().optimizer.max_error_ratio, 0.0);
   EXPECT_DOUBLE_EQ(EngineOptions().loop_closure.vocabulary.bad_signature_ratio, 0.2);
   EXPECT_EQ(EngineOptions().loop_closure.vocabulary.index.float_storage, DescriptorStorage::kUint8);
+  // Kp/ByteToFloat true: binary descriptors by the L1 of their bytes, in the
+  // vocabulary and in registration's first pass.
+  EXPECT_EQ(paper.binary_distance, BinaryDistance::kByteL1);
+  EXPECT_EQ(paper.LoopClosure().vocabulary.index.binary_distance, BinaryDistance::kByteL1);
+  EXPECT_EQ(paper.Registration().matching.binary_distance, BinaryDistance::kByteL1);
+  JsonFields hamming(nlohmann::json::parse(R"({"binary_distance": "hamming"})"), "engine.json");
+  const EngineOptions exact = ReadEngineOptions(hamming);
+  EXPECT_EQ(exact.LoopClosure().vocabulary.index.binary_distance, BinaryDistance::kHamming);
+  EXPECT_EQ(exact.Registration().matching.binary_distance, BinaryDistance::kHamming);
+  JsonFields unknown(nlohmann::json::parse(R"({"binary_distance": "l2"})"), "engine.json");
+  EXPECT_THROW(ReadEngineOptions(unknown), ConfigError);
   JsonFields bad(nlohmann::json::parse(R"({"loop_closure": {"word_storage": "int4"}})"), "engine.json");
   EXPECT_THROW(ReadEngineOptions(bad), ConfigError);
 }

@@ -12,7 +12,9 @@
 
 #include "slam/eval/trajectory_error.h"
 #include "slam/io/synthetic_dataset.h"
+#include "slam/engine/record_io.h"
 #include "slam/map/map_store.h"
+#include "slam/map/sqlite_db.h"
 #include "tests/engine/tiny_dataset.h"
 
 namespace duskmap {
@@ -221,6 +223,81 @@ TEST_F(EngineSessions, StoredMapLocalizesIdenticallyAndStaysUnchanged) {
       }
     }
   }
+  std::filesystem::remove_all(dir);
+}
+
+// The records of two runs, timings aside, are identical.
+void ExpectSameRecords(const LocalizationRun& a, const LocalizationRun& b, const std::string& what) {
+  ASSERT_EQ(a.records.size(), b.records.size()) << what;
+  for (size_t i = 0; i < a.records.size(); ++i) {
+    nlohmann::json ja = LocalizationRecordToJson(a.records[i]);
+    nlohmann::json jb = LocalizationRecordToJson(b.records[i]);
+    ja.erase("timings_ms");
+    jb.erase("timings_ms");
+    ASSERT_EQ(ja, jb) << what << ", frame " << i;
+  }
+  EXPECT_EQ(a.memory.words_index_bytes, b.memory.words_index_bytes) << what;
+}
+
+TEST_F(EngineSessions, StoredIndexIsRestoredAndLocalizesAsABuiltOne) {
+  const MappingRun& built = MapOf("1+6", {"1", "6"}, false);
+  ASSERT_FALSE(built.map.words().index_state.empty());
+  const std::string dir = testing::TinyDatasetPath() + "_index";
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/map.db";
+  SaveMap(built.map, path);
+  const std::string saved = FileBytes(path);
+  const EngineOptions options = TestOptions();
+  std::unique_ptr<SessionReader> reader = dataset_->OpenSession("F");
+
+  MapAndWords loaded = LoadMapAndWords(path, options.LocalizationMapLoad());
+  ASSERT_EQ(loaded.words.index_state, built.map.words().index_state);
+  const LocalizationRun restored =
+      LocalizeSession(loaded.map, MapWords(loaded.words), *reader, options);
+  EXPECT_TRUE(restored.index_restore.restored) << restored.index_restore.rebuild_reason;
+
+  MapWords without = loaded.words;
+  without.index_state.clear();
+  const LocalizationRun rebuilt = LocalizeSession(loaded.map, std::move(without), *reader, options);
+  EXPECT_FALSE(rebuilt.index_restore.restored);
+  EXPECT_EQ(rebuilt.index_restore.rebuild_reason, "no stored index");
+  ExpectSameRecords(restored, rebuilt, "restored vs rebuilt");
+  EXPECT_GT(restored.summary.relocalization.num_relocalized, 0);
+
+  // A damaged table: the index is rebuilt, the results are the same, and the
+  // map file is not touched.
+  {
+    mapdb::SqliteDatabase db(path, /*read_only=*/false);
+    db.Execute("UPDATE word_index SET state = zeroblob(length(state))");
+  }
+  const std::string damaged_bytes = FileBytes(path);
+  MapAndWords damaged = LoadMapAndWords(path, options.LocalizationMapLoad());
+  const LocalizationRun from_damaged =
+      LocalizeSession(damaged.map, std::move(damaged.words), *reader, options);
+  EXPECT_FALSE(from_damaged.index_restore.restored);
+  EXPECT_NE(from_damaged.index_restore.rebuild_reason.find("fails its checksum"), std::string::npos)
+      << from_damaged.index_restore.rebuild_reason;
+  ExpectSameRecords(restored, from_damaged, "restored vs damaged");
+  EXPECT_EQ(FileBytes(path), damaged_bytes) << "localization modified the map";
+  EXPECT_NE(saved, damaged_bytes);
+  std::filesystem::remove_all(dir);
+}
+
+TEST_F(EngineSessions, SessionsLocalizedOnOneLoadedMapDoNotDependOnTheOrder) {
+  const std::string dir = testing::TinyDatasetPath() + "_order";
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/map.db";
+  SaveMap(MapOf("1+6", {"1", "6"}, false).map, path);
+  const EngineOptions options = TestOptions();
+  const MapAndWords loaded = LoadMapAndWords(path, options.LocalizationMapLoad());
+  auto localize = [&](const std::string& session) {
+    std::unique_ptr<SessionReader> reader = dataset_->OpenSession(session);
+    return LocalizeSession(loaded.map, MapWords(loaded.words), *reader, options);
+  };
+  const LocalizationRun alone = localize("A");
+  localize("F");
+  const LocalizationRun after_f = localize("A");
+  ExpectSameRecords(alone, after_f, "A alone vs A after F");
   std::filesystem::remove_all(dir);
 }
 

@@ -342,5 +342,41 @@ TEST_F(MapStoreTest, MissingOrForeignFileIsRejected) {
   ExpectLoadError("not a duskmap map (no meta table)");
 }
 
+TEST_F(MapStoreTest, StoredIndexRoundTripsAndADamagedOneIsLeftOutWithTheReason) {
+  Map map = testing::MakeTestMap(2);
+  std::vector<uint8_t> state(5000);
+  for (size_t i = 0; i < state.size(); ++i) state[i] = static_cast<uint8_t>(i * 7 + 3);
+  map.SetWordIndexState(state);
+  SaveMap(map, path_);
+  MapAndWords loaded = LoadMapAndWords(path_);
+  EXPECT_EQ(loaded.words.index_state, state);
+  EXPECT_EQ(loaded.words.index_problem, "");
+  EXPECT_EQ(LoadMap(path_).words().index_state, state);
+  EXPECT_EQ(LoadMapWords(path_).index_state, state);
+
+  // Other bytes of the same size: the map still loads, without the index,
+  // and says why.
+  Tamper("UPDATE word_index SET state = zeroblob(length(state))");
+  MapAndWords damaged = LoadMapAndWords(path_);
+  EXPECT_TRUE(damaged.words.index_state.empty());
+  EXPECT_NE(damaged.words.index_problem.find("fails its checksum"), std::string::npos)
+      << damaged.words.index_problem;
+  EXPECT_NE(damaged.words.index_problem.find(path_), std::string::npos);
+  EXPECT_EQ(damaged.words.ids, loaded.words.ids);
+
+  SaveMap(map, path_);
+  Tamper("UPDATE word_index SET version = 9");
+  EXPECT_NE(LoadMapAndWords(path_).words.index_problem.find("version 9"), std::string::npos);
+  SaveMap(map, path_);
+  Tamper("DELETE FROM word_index");
+  EXPECT_NE(LoadMapAndWords(path_).words.index_problem.find("empty"), std::string::npos);
+
+  // A map saved without an index has no table and no problem.
+  SaveMap(testing::MakeTestMap(2), path_);
+  MapAndWords plain = LoadMapAndWords(path_);
+  EXPECT_TRUE(plain.words.index_state.empty());
+  EXPECT_EQ(plain.words.index_problem, "");
+}
+
 }  // namespace
 }  // namespace duskmap

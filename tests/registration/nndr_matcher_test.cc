@@ -80,6 +80,36 @@ TEST(NndrMatcher, BinaryUsesHamming) {
   }
 }
 
+TEST(NndrMatcher, BinaryByteL1OrdersByByteValues) {
+  // Query 0x00; train rows: one high bit flipped (Hamming 1, L1 128), three
+  // low bits flipped (Hamming 3, L1 7), and a far row. Hamming picks the
+  // first, byte L1 the second.
+  auto binary = [](const std::vector<std::vector<uint8_t>>& rows) {
+    FrameFeatures f;
+    f.kind = DescriptorKind::kBinary;
+    for (const auto& r : rows) {
+      f.keypoints.emplace_back(cv::Point2f(0, 0), 1.0f);
+      f.descriptors.push_back(cv::Mat(r, true).reshape(1, 1));
+    }
+    return f;
+  };
+  const FrameFeatures query = binary({{0x00, 0x00, 0x00, 0x00}});
+  const FrameFeatures train =
+      binary({{0x80, 0x00, 0x00, 0x00}, {0x07, 0x00, 0x00, 0x00}, {0xff, 0xff, 0xff, 0xff}});
+  NndrMatcherOptions hamming;
+  hamming.binary_ratio = 0.5;
+  const auto by_bits = NndrMatcher(hamming).Match(query, {}, train, {});
+  ASSERT_EQ(by_bits.size(), 1u);
+  EXPECT_EQ(by_bits[0].trainIdx, 0);
+  EXPECT_EQ(by_bits[0].distance, 1.0f);
+  NndrMatcherOptions byte_l1 = hamming;
+  byte_l1.binary_distance = BinaryDistance::kByteL1;
+  const auto by_bytes = NndrMatcher(byte_l1).Match(query, {}, train, {});
+  ASSERT_EQ(by_bytes.size(), 1u);
+  EXPECT_EQ(by_bytes[0].trainIdx, 1);
+  EXPECT_EQ(by_bytes[0].distance, 7.0f);  // 7 < 0.5 x 128
+}
+
 TEST(NndrMatcher, DegenerateInputs) {
   const FrameFeatures one = FloatFeatures({{1.0f, 0.0f}});
   EXPECT_TRUE(NndrMatcher().Match(one, {}, one, {}).empty());  // no second neighbour

@@ -185,6 +185,73 @@ TEST(DescriptorIndex, EveryLeafShapeSearchesLikeTheLinearScan) {
   }
 }
 
+TEST(DescriptorIndex, ByteL1KdTreeSearchesLikeTheByteL1LinearScan) {
+  const SyntheticDescriptors gen = Generator(DescriptorKind::kBinary);
+  const cv::Mat words = gen.Random(2000, 8);
+  const cv::Mat queries = gen.Random(300, 9);
+  DescriptorIndexOptions options;
+  options.binary_distance = BinaryDistance::kByteL1;
+  options.checks = 100000;  // exhaustive
+  DescriptorIndex forest(options, DescriptorKind::kBinary, words.cols);
+  options.binary_kind = IndexKind::kLinear;
+  DescriptorIndex linear(options, DescriptorKind::kBinary, words.cols);
+  options.binary_distance = BinaryDistance::kHamming;
+  DescriptorIndex hamming(options, DescriptorKind::kBinary, words.cols);
+  for (int i = 0; i < words.rows; ++i) {
+    forest.Add(i + 1, words.ptr<uint8_t>(i));
+    linear.Add(i + 1, words.ptr<uint8_t>(i));
+    hamming.Add(i + 1, words.ptr<uint8_t>(i));
+  }
+  const auto a = Search(forest, queries);
+  const auto b = Search(linear, queries);
+  const auto h = Search(hamming, queries);
+  int other_nearest = 0;
+  for (int q = 0; q < queries.rows; ++q) {
+    ASSERT_EQ(a[q].size(), 2u);
+    for (int k = 0; k < 2; ++k) {
+      ASSERT_EQ(a[q][k].word, b[q][k].word) << "query " << q;
+      ASSERT_EQ(a[q][k].distance, b[q][k].distance) << "query " << q;
+    }
+    const uint8_t* word = words.ptr<uint8_t>(a[q][0].word - 1);
+    EXPECT_EQ(a[q][0].distance, ByteL1Distance(queries.ptr<uint8_t>(q), word, words.cols));
+    other_nearest += h[q][0].word != a[q][0].word;
+  }
+  // The two metrics are different orders on random bytes.
+  EXPECT_GT(other_nearest, queries.rows / 4);
+  // With 32 checks the forest still finds most exact neighbours.
+  DescriptorIndexOptions approximate;
+  approximate.binary_distance = BinaryDistance::kByteL1;
+  DescriptorIndex fast(approximate, DescriptorKind::kBinary, words.cols);
+  for (int i = 0; i < words.rows; ++i) fast.Add(i + 1, words.ptr<uint8_t>(i));
+  int found = 0;
+  for (int i = 0; i < 200; ++i) {
+    cv::Mat q = words.row(i * 9).clone();
+    q.at<uint8_t>(0, i % words.cols) ^= 0x01;  // one byte off by one
+    std::vector<std::vector<WordNeighbour>> out;
+    fast.SearchTwoNearest(q.ptr<uint8_t>(0), 1, &out);
+    found += !out[0].empty() && out[0][0].word == i * 9 + 1;
+  }
+  EXPECT_GT(found, 190);
+}
+
+TEST(DescriptorIndexOptions, ByteL1NeedsAKdTreeOrTheLinearScan) {
+  DescriptorIndexOptions options;
+  options.binary_distance = BinaryDistance::kByteL1;
+  options.binary_kind = IndexKind::kLsh;
+  try {
+    options.Check();
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("binary_distance"), std::string::npos) << e.what();
+  }
+  options.binary_kind = IndexKind::kHierarchical;
+  EXPECT_THROW(options.Check(), ConfigError);
+  options.binary_kind = IndexKind::kLinear;
+  EXPECT_NO_THROW(options.Check());
+  options.binary_kind = IndexKind::kBitKdTree;
+  EXPECT_NO_THROW(options.Check());
+}
+
 TEST(DescriptorIndex, EmptyAfterRemovingEverythingAndReusableAfterwards) {
   const SyntheticDescriptors gen = Generator(DescriptorKind::kFloat);
   const cv::Mat words = gen.Random(10, 1);
