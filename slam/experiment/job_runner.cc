@@ -1,8 +1,10 @@
 #include "slam/experiment/job_runner.h"
 
+#include <algorithm>
 #include <condition_variable>
 #include <mutex>
 #include <set>
+#include <system_error>
 #include <thread>
 
 #include "slam/core/check.h"
@@ -152,8 +154,20 @@ JobRunSummary RunJobs(const ExperimentPlan& plan, JobExecutor& executor,
     }
   };
 
+  // No more workers than jobs to run; a worker that cannot be started (the
+  // system's thread limit) leaves the others to do the work.
+  const size_t to_run = plan.jobs.size() - static_cast<size_t>(scheduler.summary.resumed);
+  const size_t wanted = std::max<size_t>(
+      1, std::min(static_cast<size_t>(options.parallel_jobs), to_run));
   std::vector<std::thread> threads;
-  for (int i = 0; i < options.parallel_jobs; ++i) threads.emplace_back(worker);
+  for (size_t i = 0; i < wanted; ++i) {
+    try {
+      threads.emplace_back(worker);
+    } catch (const std::system_error&) {
+      if (threads.empty()) throw;
+      break;
+    }
+  }
   for (std::thread& thread : threads) thread.join();
   scheduler.summary.wall_s = wall.ElapsedMs() / 1000.0;
   return scheduler.summary;

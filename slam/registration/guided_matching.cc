@@ -1,6 +1,7 @@
 #include "slam/registration/guided_matching.h"
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <unordered_map>
 
@@ -41,13 +42,15 @@ class KeypointGrid {
 
  private:
   long Cell(double x) const { return static_cast<long>(std::floor(x / cell_px_)); }
-  static long long Key(long cu, long cv) {
-    return (static_cast<long long>(cu) << 32) ^ static_cast<unsigned int>(cv);
+  // The two cell indices in one 64-bit key (shifted as unsigned: a negative
+  // cu shifted as signed is undefined behaviour).
+  static uint64_t Key(long cu, long cv) {
+    return (static_cast<uint64_t>(cu) << 32) ^ static_cast<uint32_t>(cv);
   }
 
   const std::vector<cv::KeyPoint>& keypoints_;
   double cell_px_;
-  std::unordered_map<long long, std::vector<int>> cells_;
+  std::unordered_map<uint64_t, std::vector<int>> cells_;
 };
 
 }  // namespace

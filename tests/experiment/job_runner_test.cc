@@ -67,6 +67,45 @@ TEST(RunJobs, RunsEveryJobOnceInParallelRespectingDependencies) {
   for (const Job& job : plan.jobs) EXPECT_TRUE(IsJobComplete(dir, job.id)) << job.id;
 }
 
+TEST(RunJobs, FarMoreWorkersThanJobsRunEveryJobOnce) {
+  // --jobs 100000 used to start 100,000 threads and abort when one failed.
+  const ExperimentPlan plan = SmallPlan();
+  const fs::path dir = FreshDir("many_workers");
+  RecordingExecutor executor(dir, {});
+  const JobRunSummary summary = RunJobs(plan, executor, {dir, 100000, false});
+  EXPECT_TRUE(summary.ok());
+  EXPECT_EQ(summary.executed, static_cast<int>(plan.jobs.size()));
+  // Resumed with every job done: nothing to run, still one clean return.
+  const JobRunSummary again = RunJobs(plan, executor, {dir, 100000, true});
+  EXPECT_EQ(again.resumed, static_cast<int>(plan.jobs.size()));
+  EXPECT_EQ(again.executed, 0);
+}
+
+TEST(PlanExperiment, ListsTheLocalizationsOfAMapTogetherAfterTheirDependencies) {
+  ExperimentOptions options;
+  options.dataset_path = "d";
+  options.features = {"SI"};
+  options.maps = {ParseMapSpec("1"), ParseMapSpec("1+2"), ParseMapSpec("1|2")};
+  options.localization_sessions = {"A", "B"};
+  options.consecutive_pairs = {{"1", "2"}};
+  const ExperimentPlan plan = PlanExperiment(options, {{"1", 600}, {"2", 630}, {"A", 605}, {"B", 640}});
+  std::set<std::string> listed;
+  std::string previous_map;
+  std::set<std::string> finished_maps;
+  for (const Job& job : plan.jobs) {
+    for (const std::string& d : job.depends_on) EXPECT_TRUE(listed.count(d)) << job.id << " before " << d;
+    listed.insert(job.id);
+    if (job.kind != JobKind::kLocalize) continue;
+    const std::string& map = job.depends_on.front();
+    if (map != previous_map) {
+      EXPECT_FALSE(finished_maps.count(map)) << "localizations on " << map << " are split";
+      if (!previous_map.empty()) finished_maps.insert(previous_map);
+      previous_map = map;
+    }
+  }
+  EXPECT_EQ(listed.size(), plan.jobs.size());
+}
+
 TEST(RunJobs, ResumeSkipsFinishedJobsAndRerunsPartialOnes) {
   const ExperimentPlan plan = SmallPlan();
   const fs::path dir = FreshDir("resume");
