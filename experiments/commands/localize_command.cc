@@ -149,7 +149,8 @@ RunFn SetupLocalize(CLI::App& command) {
       const LocalizationRun run = LocalizeSession(
           map, last ? std::move(loaded.words) : MapWords(loaded.words), *readers[i], options);
       readers[i].reset();
-      if (!run.index_restore.restored && !warned) {
+      // (A map without words has no index to restore or rebuild.)
+      if (!run.index_restore.restored && !run.index_restore.rebuild_reason.empty() && !warned) {
         std::cerr << "duskmap localize: warning: " << args->map
                   << ": vocabulary index rebuilt (" << run.index_restore.rebuild_reason << ", "
                   << run.index_restore.seconds << " s); the map is unchanged\n";

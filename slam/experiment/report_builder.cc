@@ -467,7 +467,7 @@ ReportTable TimingBudgetTable(const ExperimentOptions& options, const Experiment
       setup.Add(s.localizer_setup_s);
       restore.Add(s.index_restore_s);
       if (full) restore_full.Add(s.index_restore_s);
-      if (!s.index_restored) ++rebuilt;
+      if (!s.index_restored && !s.index_rebuild_reason.empty()) ++rebuilt;
       // Per-frame stages without extraction (the features come from the cache).
       frames.Add(s.num_frames * (s.mean_times_ms.total - s.mean_times_ms.features) / 1000.0);
     }
