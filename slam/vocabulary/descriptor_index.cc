@@ -449,10 +449,9 @@ std::vector<uint8_t> DescriptorIndex::SaveState() const {
   if (!CanSaveState()) return state;
   ByteWriter w(&state);
   w.Put(kIndexStateMagic);
+  // The row format and width are part of the forest's own shape check.
   w.Put<int32_t>(static_cast<int32_t>(index_kind()));
   w.Put<int32_t>(static_cast<int32_t>(kind_));
-  w.Put<int32_t>(static_cast<int32_t>(format()));
-  w.Put<int32_t>(cols_);
   backend_->AppendForestState(&state);
   return state;
 }
@@ -463,17 +462,15 @@ bool DescriptorIndex::RestoreState(const std::vector<uint8_t>& state,
   SLAM_CHECK(problem != nullptr);
   ByteReader r(state.data(), state.size());
   uint32_t magic = 0;
-  int32_t index_kind = 0, kind = 0, format = 0, cols = 0;
-  if (!r.Get(&magic) || magic != kIndexStateMagic || !r.Get(&index_kind) || !r.Get(&kind) ||
-      !r.Get(&format) || !r.Get(&cols)) {
+  int32_t index_kind = 0, kind = 0;
+  if (!r.Get(&magic) || magic != kIndexStateMagic || !r.Get(&index_kind) || !r.Get(&kind)) {
     *problem = "not a stored descriptor index";
     return false;
   }
   if (index_kind != static_cast<int32_t>(this->index_kind()) ||
-      kind != static_cast<int32_t>(kind_) || format != static_cast<int32_t>(this->format()) ||
-      cols != cols_) {
-    *problem = std::string("the stored index is of another kind or row shape (this run uses ") +
-               IndexKindName(this->index_kind()) + " over " + std::to_string(cols_) + " columns)";
+      kind != static_cast<int32_t>(kind_)) {
+    *problem = std::string("the stored index is of another kind (this run uses ") +
+               IndexKindName(this->index_kind()) + ")";
     return false;
   }
   const size_t header = state.size() - r.remaining();

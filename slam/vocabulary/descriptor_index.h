@@ -113,8 +113,8 @@ class DescriptorIndex {
   // Whether SaveState can store this index: the KD-tree kinds (kdtree,
   // bit_kdtree), which are deterministic; the FLANN kinds rebuild on load.
   bool CanSaveState() const;
-  // The built index as bytes (kind, row shape, then the KD-forest's
-  // structure, kd_forest.h); empty when !CanSaveState().
+  // The built index as bytes (index and descriptor kind, then the
+  // KD-forest's shape and structure, kd_forest.h); empty when !CanSaveState().
   std::vector<uint8_t> SaveState() const;
   // Restores SaveState's bytes into this index, which must be empty, with
   // its words given as `ids` (strictly increasing) and their stored rows
