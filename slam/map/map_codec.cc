@@ -1,6 +1,8 @@
 #include "slam/map/map_codec.h"
 
+#include <algorithm>
 #include <cstring>
+#include <limits>
 
 #include "slam/core/check.h"
 
@@ -195,11 +197,16 @@ cv::Mat DecodeMatrix(const Blob& blob, int rows, int cols, int cv_type, const st
     SLAM_THROW_IF_NOT(InputError, blob.empty()) << what << ": data for an empty matrix";
     return cv::Mat();
   }
-  SLAM_THROW_IF_NOT(InputError, cv_type >= 0 && cols > 0) << what << ": no descriptor layout";
+  SLAM_THROW_IF_NOT(InputError, cv_type >= 0 && cols > 0 && rows > 0) << what << ": no descriptor layout";
+  // The size the layout declares, checked against the blob before anything
+  // is allocated (a damaged column count must not allocate gigabytes).
+  const unsigned __int128 expected = static_cast<unsigned __int128>(rows) *
+                                     static_cast<unsigned>(cols) * CV_ELEM_SIZE(cv_type);
+  SLAM_THROW_IF_NOT(InputError, expected == blob.size())
+      << what << ": expected " << static_cast<unsigned long long>(std::min<unsigned __int128>(
+                                      expected, std::numeric_limits<uint64_t>::max()))
+      << " bytes for " << rows << "x" << cols << ", got " << blob.size();
   cv::Mat matrix(rows, cols, cv_type);
-  SLAM_THROW_IF_NOT(InputError, blob.size() == matrix.total() * matrix.elemSize())
-      << what << ": expected " << matrix.total() * matrix.elemSize() << " bytes for " << rows
-      << "x" << cols << ", got " << blob.size();
   std::memcpy(matrix.data, blob.data(), blob.size());
   return matrix;
 }

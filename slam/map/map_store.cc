@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <future>
 #include <limits>
@@ -19,6 +20,7 @@
 #include "slam/core/checksum.h"
 #include "slam/map/map_codec.h"
 #include "slam/map/shared_rows.h"
+#include "slam/map/table_checksums.h"
 #include "slam/map/sqlite_db.h"
 
 namespace duskmap {
@@ -26,6 +28,16 @@ namespace {
 
 using mapdb::SqliteDatabase;
 using mapdb::SqliteStatement;
+using mapdb::StoredChecksums;
+using mapdb::TableSum;
+using mapdb::VerifyTable;
+using mapdb::ReadStoredChecksums;
+using mapdb::WriteChecksums;
+using mapdb::kSelectMeta;
+using mapdb::kSelectSessions;
+using mapdb::kSelectNodes;
+using mapdb::kSelectLinks;
+using mapdb::kSelectWords;
 
 constexpr const char* kSchema = R"sql(
 CREATE TABLE meta(key TEXT PRIMARY KEY, value TEXT NOT NULL);
@@ -40,6 +52,8 @@ CREATE TABLE links(from_id INTEGER NOT NULL, to_id INTEGER NOT NULL, type INTEGE
   transform BLOB NOT NULL, information BLOB NOT NULL, PRIMARY KEY(from_id, to_id));
 CREATE TABLE words(id INTEGER PRIMARY KEY, descriptor BLOB NOT NULL);
 )sql";
+
+
 
 // ---- saving -------------------------------------------------------------
 
@@ -208,13 +222,16 @@ void CheckIntegrity(SqliteDatabase& db) {
       << db.path() << ": corrupted map file (" << result << ")";
 }
 
-std::map<std::string, std::string> ReadMeta(SqliteDatabase& db) {
+std::map<std::string, std::string> ReadMeta(SqliteDatabase& db, TableSum* sum) {
   std::map<std::string, std::string> meta;
   SqliteStatement has = db.Prepare("SELECT count(*) FROM sqlite_master WHERE name = 'meta'");
   SLAM_THROW_IF_NOT(InputError, has.Step() && has.Int(0) == 1)
       << db.path() << ": not a duskmap map (no meta table)";
-  SqliteStatement select = db.Prepare("SELECT key, value FROM meta");
-  while (select.Step()) meta[select.Text(0)] = select.Text(1);
+  SqliteStatement select = db.Prepare(kSelectMeta);
+  while (select.Step()) {
+    sum->Add(select, 2);
+    meta[select.Text(0)] = select.Text(1);
+  }
   return meta;
 }
 
@@ -277,15 +294,18 @@ MapMetadata ReadMetadata(const std::map<std::string, std::string>& meta, const s
   return m;
 }
 
-void ReadSessions(SqliteDatabase& db, Map* map) {
-  SqliteStatement select = db.Prepare("SELECT id, name, clock_time FROM sessions ORDER BY id");
+void ReadSessions(SqliteDatabase& db, const StoredChecksums& stored, Map* map) {
+  SqliteStatement select = db.Prepare(kSelectSessions);
+  TableSum sum;
   while (select.Step()) {
+    sum.Add(select, 3);
     const SessionId id = map->AddSession(
         select.Text(1),
         select.IsNull(2) ? std::nullopt : std::optional<std::string>(select.Text(2)));
     SLAM_THROW_IF_NOT(InputError, id == select.Int(0))
         << db.path() << ": session ids are not 0, 1, 2, ... (found " << select.Int(0) << ")";
   }
+  VerifyTable(stored, "sessions", sum, db.path());
 }
 
 MapNode ReadNodeRow(const SqliteStatement& row, const MapMetadata& m, const std::string& path,
@@ -336,19 +356,21 @@ MapNode ReadNodeRow(const SqliteStatement& row, const MapMetadata& m, const std:
 }
 
 void ReadNodes(SqliteDatabase& db, const MapMetadata& m, const MapLoadOptions& options,
-               Map* map) {
-  SqliteStatement select = db.Prepare(
-      "SELECT id, session, frame_index, timestamp_s, map_pose, odom_pose, body_from_camera, "
-      "camera, truth_pose, num_features, keypoints, points, descriptors, descriptor_scales, "
-      "word_ids, word_counts, vocabulary_features FROM nodes "
-      "ORDER BY id");
-  while (select.Step()) map->AddNode(ReadNodeRow(select, m, db.path(), options));
+               const StoredChecksums& stored, Map* map) {
+  SqliteStatement select = db.Prepare(kSelectNodes);
+  TableSum sum;
+  while (select.Step()) {
+    sum.Add(select, 17);
+    map->AddNode(ReadNodeRow(select, m, db.path(), options));
+  }
+  VerifyTable(stored, "nodes", sum, db.path());
 }
 
-void ReadLinks(SqliteDatabase& db, Map* map) {
-  SqliteStatement select =
-      db.Prepare("SELECT from_id, to_id, type, transform, information FROM links");
+void ReadLinks(SqliteDatabase& db, const StoredChecksums& stored, Map* map) {
+  SqliteStatement select = db.Prepare(kSelectLinks);
+  TableSum sum;
   while (select.Step()) {
+    sum.Add(select, 5);
     Link link;
     link.from = select.Int(0);
     link.to = select.Int(1);
@@ -362,6 +384,7 @@ void ReadLinks(SqliteDatabase& db, Map* map) {
     link.information = DecodeInformation(select.Blob(4), what + " information");
     map->AddLink(link);
   }
+  VerifyTable(stored, "links", sum, db.path());
 }
 
 // A stored index that fails its checks is left out with the reason in
@@ -392,10 +415,11 @@ void ReadWordIndex(SqliteDatabase& db, MapWords* words) {
 }
 
 MapWords ReadWords(SqliteDatabase& db, const MapMetadata& m, int64_t next_word_id,
-                   int64_t expected_rows, int64_t file_bytes) {
+                   int64_t expected_rows, int64_t file_bytes, const StoredChecksums& stored) {
   MapWords words;
   words.next_word_id = static_cast<WordId>(next_word_id);
-  SqliteStatement select = db.Prepare("SELECT id, descriptor FROM words ORDER BY id");
+  SqliteStatement select = db.Prepare(kSelectWords);
+  TableSum sum;
   // The stored form of a word (map.h, MapMetadata::word_storage).
   const WordRowFormat format = WordRowFormatFor(m.descriptor_kind, m.word_storage);
   const bool floats = format == WordRowFormat::kFloat32;
@@ -417,6 +441,7 @@ MapWords ReadWords(SqliteDatabase& db, const MapMetadata& m, int64_t next_word_i
   }
   int count = 0;
   while (select.Step()) {
+    sum.Add(select, 2);
     words.ids.push_back(static_cast<WordId>(select.Int(0)));
     size_t bytes = 0;
     const uint8_t* blob = select.BlobData(1, &bytes);
@@ -432,6 +457,7 @@ MapWords ReadWords(SqliteDatabase& db, const MapMetadata& m, int64_t next_word_i
     std::memcpy(words.descriptors.ptr(count++), blob, bytes);
   }
   words.descriptors = count == 0 ? cv::Mat() : words.descriptors.rowRange(0, count);
+  VerifyTable(stored, "words", sum, db.path());
   ReadWordIndex(db, &words);
   return words;
 }
@@ -448,6 +474,19 @@ void CheckCounts(const std::map<std::string, std::string>& meta, const Map& map,
 
 }  // namespace
 
+bool IsDuskmapMapFile(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) return false;
+  try {
+    CheckFileHeader(path);
+    SqliteDatabase db(path, /*read_only=*/true);
+    SqliteStatement select = db.Prepare("SELECT count(*) FROM meta WHERE key = 'schema_version'");
+    return select.Step() && select.Int(0) == 1;
+  } catch (const Error&) {
+    return false;
+  }
+}
+
 void SaveMap(const Map& map, const std::string& path) {
   for (const auto& [id, node] : map.nodes()) {
     SLAM_THROW_IF_NOT(InputError, !node.features.has_shared_rows())
@@ -461,23 +500,32 @@ void SaveMap(const Map& map, const std::string& path) {
   const std::string temp = path + ".saving";
   SLAM_THROW_IF_NOT(InputError, std::remove(temp.c_str()) == 0 || errno == ENOENT)
       << temp << ": cannot remove a stale temporary file: " << std::strerror(errno);
-  {
-    SqliteDatabase db(temp, /*read_only=*/false);
-    // The temporary file is disposable: no journal; durability comes from the
-    // fsync before the rename.
-    db.Execute("PRAGMA journal_mode=OFF; PRAGMA synchronous=OFF;");
-    db.Execute("BEGIN");
-    db.Execute(kSchema);
-    WriteMeta(db, map);
-    WriteSessions(db, map);
-    WriteNodes(db, map);
-    WriteLinksAndWords(db, map);
-    WriteWordIndex(db, map);
-    db.Execute("COMMIT");
+  // A failed save (a full disk, an unwritable folder) leaves the previous
+  // file as it was and no temporary file.
+  try {
+    {
+      SqliteDatabase db(temp, /*read_only=*/false);
+      // The temporary file is disposable: no journal; durability comes from
+      // the fsync before the rename.
+      db.Execute("PRAGMA journal_mode=OFF; PRAGMA synchronous=OFF;");
+      db.Execute("BEGIN");
+      db.Execute(kSchema);
+      db.Execute(mapdb::kChecksumsSchema);
+      WriteMeta(db, map);
+      WriteSessions(db, map);
+      WriteNodes(db, map);
+      WriteLinksAndWords(db, map);
+      WriteWordIndex(db, map);
+      WriteChecksums(db);
+      db.Execute("COMMIT");
+    }
+    FsyncPath(temp, /*directory=*/false);
+    SLAM_THROW_IF_NOT(InputError, std::rename(temp.c_str(), path.c_str()) == 0)
+        << path << ": cannot replace the map file: " << std::strerror(errno);
+  } catch (const Error&) {
+    std::remove(temp.c_str());
+    throw;
   }
-  FsyncPath(temp, /*directory=*/false);
-  SLAM_THROW_IF_NOT(InputError, std::rename(temp.c_str(), path.c_str()) == 0)
-      << path << ": cannot replace the map file: " << std::strerror(errno);
   FsyncPath(DirectoryOf(path), /*directory=*/true);
 }
 
@@ -488,12 +536,20 @@ namespace {
 struct MapHeader {
   std::map<std::string, std::string> meta;
   MapMetadata metadata;
+  StoredChecksums checksums;
 };
 
 MapHeader ReadHeader(SqliteDatabase& db, const std::string& path, const MapLoadOptions& options) {
   if (options.verify_integrity) CheckIntegrity(db);
   MapHeader header;
-  header.meta = ReadMeta(db);
+  TableSum meta_sum;
+  header.meta = ReadMeta(db, &meta_sum);
+  // The schema version first: an older map has no checksums and says so.
+  const auto version = header.meta.find("schema_version");
+  if (version == header.meta.end() || version->second == std::to_string(kMapSchemaVersion)) {
+    header.checksums = ReadStoredChecksums(db);
+    VerifyTable(header.checksums, "meta", meta_sum, path);
+  }
   header.metadata = ReadMetadata(header.meta, path, options);
   return header;
 }
@@ -530,16 +586,17 @@ Map LoadMapFrom(const std::string& path, const MapLoadOptions& options, MapWords
     words_read = std::async(std::launch::async, [&path, &header, next_word_id] {
       SqliteDatabase words_db(path, /*read_only=*/true);
       return ReadWords(words_db, header.metadata, next_word_id,
-                       MetaInt(header.meta, "num_words", path), FileBytes(path));
+                       MetaInt(header.meta, "num_words", path), FileBytes(path),
+                       header.checksums);
     });
   }
   Map map(header.metadata);
   std::exception_ptr nodes_error;
   try {
-    ReadSessions(db, &map);
-    ReadNodes(db, header.metadata, options, &map);
+    ReadSessions(db, header.checksums, &map);
+    ReadNodes(db, header.metadata, options, header.checksums, &map);
     map.ReserveNodeIdsUpTo(MetaInt(meta, "last_node_id", path));
-    ReadLinks(db, &map);
+    ReadLinks(db, header.checksums, &map);
   } catch (...) {
     nodes_error = std::current_exception();
   }
@@ -588,7 +645,8 @@ MapWords LoadMapWords(const std::string& path, const MapLoadOptions& options) {
   const MapHeader header = ReadHeader(db, path, options);
   const std::map<std::string, std::string>& meta = header.meta;
   MapWords words = ReadWords(db, header.metadata, MetaInt(meta, "next_word_id", path),
-                             MetaInt(meta, "num_words", path), FileBytes(path));
+                             MetaInt(meta, "num_words", path), FileBytes(path),
+                             header.checksums);
   SLAM_THROW_IF_NOT(InputError, MetaInt(meta, "num_words", path) ==
                                     static_cast<int64_t>(words.ids.size()))
       << path << ": incomplete map (row counts differ from those recorded at save)";

@@ -15,7 +15,10 @@
 // Loading checks, with one-line InputError messages naming the file: that it
 // exists and is an SQLite file, that it is not truncated (the header's page
 // count against the file size), its integrity (PRAGMA quick_check), the
-// schema version, the feature type the caller expects, and every row's sizes.
+// schema version, the feature type the caller expects, every row's sizes, and
+// the checksum of every table it reads (table checksums: per table the row
+// count and the sum of the rows' 64-bit checksums, computed at save over the
+// rows as stored; a flipped bit in any value fails its table's check).
 #pragma once
 
 #include <string>
@@ -25,8 +28,8 @@
 namespace duskmap {
 
 // 2: compact node features; 3: word counts, n_j, next word id; 4: 12-byte keypoints (no octave);
-// 5: words in the vocabulary's stored form (word_storage)
-inline constexpr int kMapSchemaVersion = 5;
+// 5: words in the vocabulary's stored form (word_storage); 6: table checksums
+inline constexpr int kMapSchemaVersion = 6;
 
 struct MapLoadOptions {
   std::string expected_feature_type;  // "" accepts any; otherwise must equal the map's
@@ -46,6 +49,11 @@ struct MapLoadOptions {
   // matcher does not read them (all but SuperGlue). The map cannot be saved.
   bool keep_keypoint_responses = true;
 };
+
+// True when `path` is a file duskmap's SaveMap wrote (an SQLite file with a
+// meta table holding schema_version), of any schema version: what
+// `--overwrite` may replace.
+bool IsDuskmapMapFile(const std::string& path);
 
 // Throws InputError naming the path when the file cannot be written.
 void SaveMap(const Map& map, const std::string& path);

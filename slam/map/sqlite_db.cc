@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "slam/core/check.h"
+#include "slam/core/checksum.h"
 
 namespace duskmap::mapdb {
 
@@ -105,6 +106,43 @@ const uint8_t* SqliteStatement::BlobData(int column, size_t* bytes) const {
   const void* data = sqlite3_column_blob(statement_, column);
   *bytes = static_cast<size_t>(sqlite3_column_bytes(statement_, column));
   return static_cast<const uint8_t*>(data);
+}
+
+uint64_t SqliteStatement::RowChecksum(int num_columns) const {
+  // Each value contributes its type and bytes; the row mixes them in column
+  // order (FNV-style step over the values' checksums).
+  uint64_t row = 0x9e3779b97f4a7c15ull;
+  for (int c = 0; c < num_columns; ++c) {
+    const int type = sqlite3_column_type(statement_, c);
+    uint64_t value = 0;
+    switch (type) {
+      case SQLITE_INTEGER: {
+        const int64_t v = sqlite3_column_int64(statement_, c);
+        value = Checksum64(&v, sizeof(v));
+        break;
+      }
+      case SQLITE_FLOAT: {
+        const double v = sqlite3_column_double(statement_, c);
+        value = Checksum64(&v, sizeof(v));
+        break;
+      }
+      case SQLITE_TEXT: {
+        const unsigned char* text = sqlite3_column_text(statement_, c);
+        value = Checksum64(text, static_cast<size_t>(sqlite3_column_bytes(statement_, c)));
+        break;
+      }
+      case SQLITE_BLOB: {
+        const void* blob = sqlite3_column_blob(statement_, c);
+        value = Checksum64(blob, static_cast<size_t>(sqlite3_column_bytes(statement_, c)));
+        break;
+      }
+      default:
+        break;
+    }
+    row = (row ^ value ^ static_cast<uint64_t>(type)) * 0x100000001b3ull;
+    row ^= row >> 31;
+  }
+  return row;
 }
 
 }  // namespace duskmap::mapdb

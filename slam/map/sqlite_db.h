@@ -64,6 +64,9 @@ class SqliteStatement {
   // The blob without a copy: valid until the next Step, Reset or column
   // access of this statement. `*bytes` gets its size (nullptr when empty).
   const uint8_t* BlobData(int column, size_t* bytes) const;
+  // A 64-bit checksum of the current row's first `num_columns` values (their
+  // storage types and bytes), for the map's table checksums.
+  uint64_t RowChecksum(int num_columns) const;
 
  private:
   SqliteDatabase* db_;

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -106,8 +107,12 @@ class MapStoreTest : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  // Runs an SQL statement on a saved map file (to forge bad inputs).
+  // Runs an SQL statement on a saved map file (to forge bad inputs); the
+  // table checksums then fail.
   void Tamper(const std::string& sql) { testing::ExecuteSql(path_, sql); }
+  // The same, with the checksums recorded anew: the file as a writer with
+  // those values would have saved it, for the checks behind the checksums.
+  void TamperResealed(const std::string& sql) { testing::ExecuteSqlResealed(path_, sql); }
 
   // Expects LoadMap to throw InputError whose message contains `needle`.
   void ExpectLoadError(const std::string& needle, const MapLoadOptions& options = {}) {
@@ -209,12 +214,12 @@ TEST_F(MapStoreTest, UnknownSchemaVersionIsRejected) {
 // counts (schema 2) or compact node features (schema 1) gives a clear error.
 TEST_F(MapStoreTest, OldSchemaVersionAsksForARebuild) {
   SaveMap(testing::MakeTestMap(2), path_);
-  Tamper("UPDATE meta SET value = '4' WHERE key = 'schema_version'");
-  ExpectLoadError("schema version 4 is not supported (this build reads 5; the map was written "
+  TamperResealed("UPDATE meta SET value = '4' WHERE key = 'schema_version'");
+  ExpectLoadError("schema version 4 is not supported (this build reads 6; the map was written "
                   "by an older duskmap, rebuild it)");
   for (const char* version : {"3", "2", "1"}) {
-    Tamper(std::string("UPDATE meta SET value = '") + version + "' WHERE key = 'schema_version'");
-    ExpectLoadError(std::string("schema version ") + version + " is not supported (this build reads 5;");
+    TamperResealed(std::string("UPDATE meta SET value = '") + version + "' WHERE key = 'schema_version'");
+    ExpectLoadError(std::string("schema version ") + version + " is not supported (this build reads 6;");
   }
 }
 
@@ -279,7 +284,7 @@ TEST_F(MapStoreTest, VocabularyRoundTripsWithCountsAndNextWordId) {
   const Map loaded = LoadMap(path_);
   EXPECT_EQ(loaded.words().next_word_id, 977);
   EXPECT_EQ(loaded.words().ids, map.words().ids);
-  Tamper("UPDATE nodes SET word_counts = x'01000000' WHERE id = 2");
+  TamperResealed("UPDATE nodes SET word_counts = x'01000000' WHERE id = 2");
   ExpectLoadError("node 2: 1 word counts for");
 }
 
@@ -289,13 +294,13 @@ TEST_F(MapStoreTest, QuantizedDescriptorsRoundTrip) {
   const Map loaded = LoadMap(path_);
   EXPECT_EQ(loaded.metadata().descriptor_storage, DescriptorStorage::kUint8);
   ExpectMapsEqual(map, loaded);
-  Tamper("UPDATE nodes SET descriptor_scales = x'00000000' WHERE id = 2");
+  TamperResealed("UPDATE nodes SET descriptor_scales = x'00000000' WHERE id = 2");
   ExpectLoadError("node 2: 1 descriptor scales, expected 60");
   SaveMap(map, path_);
-  Tamper("UPDATE meta SET value = 'float64' WHERE key = 'descriptor_storage'");
+  TamperResealed("UPDATE meta SET value = 'float64' WHERE key = 'descriptor_storage'");
   ExpectLoadError("unknown descriptor storage 'float64'");
   SaveMap(map, path_);
-  Tamper("UPDATE meta SET value = 'int4' WHERE key = 'word_storage'");
+  TamperResealed("UPDATE meta SET value = 'int4' WHERE key = 'word_storage'");
   ExpectLoadError("unknown word storage 'int4'");
 }
 
@@ -326,11 +331,81 @@ TEST_F(MapStoreTest, CorruptedFileIsRejected) {
 
 TEST_F(MapStoreTest, InconsistentRowsAreRejected) {
   SaveMap(testing::MakeTestMap(2), path_);
-  Tamper("UPDATE nodes SET keypoints = x'0102' WHERE id = 2");
+  TamperResealed("UPDATE nodes SET keypoints = x'0102' WHERE id = 2");
   ExpectLoadError("node 2 keypoints");
   SaveMap(testing::MakeTestMap(2), path_);
-  Tamper("DELETE FROM links WHERE to_id = 2 AND from_id = 1");
+  TamperResealed("DELETE FROM links WHERE to_id = 2 AND from_id = 1");
   ExpectLoadError("row counts differ");
+}
+
+// Every table that carries results is checksummed: a changed value in any
+// of them is an error naming the map and the table, whichever reader loads
+// it (LoadMap, LoadMapWords, LoadMapAndWords).
+TEST_F(MapStoreTest, ChangedValuesFailTheirTablesChecksum) {
+  const Map map = testing::MakeTestMap(6, 50);
+  const std::vector<std::pair<std::string, std::string>> changes = {
+      {"meta", "UPDATE meta SET value = '9' WHERE key = 'descriptor_cols'"},
+      {"sessions", "UPDATE sessions SET name = 'x' WHERE id = 0"},
+      {"nodes", "UPDATE nodes SET timestamp_s = timestamp_s + 1e-9 WHERE id = 3"},
+      {"nodes", "UPDATE nodes SET descriptors = zeroblob(length(descriptors)) WHERE id = 2"},
+      {"links", "UPDATE links SET transform = (SELECT transform FROM links WHERE from_id = 2 LIMIT 1) WHERE from_id = 1"},
+      {"words", "UPDATE words SET descriptor = zeroblob(length(descriptor)) WHERE id = 8"}};
+  for (const auto& [table, sql] : changes) {
+    SaveMap(map, path_);
+    EXPECT_NO_THROW(LoadMap(path_));
+    Tamper(sql);
+    ExpectLoadError(path_ + ": table " + table + " fails its checksum");
+    if (table == "words") {
+      EXPECT_THROW(LoadMapWords(path_), InputError);
+      EXPECT_THROW(LoadMapAndWords(path_), InputError);
+    }
+  }
+  SaveMap(map, path_);
+  Tamper("DROP TABLE checksums");
+  ExpectLoadError("the map has no table checksums");
+}
+
+// Bits flipped anywhere in the file's pages (not the header): every load
+// either fails with a one-line InputError naming the map, or gives the map
+// that was saved.
+TEST_F(MapStoreTest, FlippedBitsNeverLoadAsAnotherMap) {
+  const Map map = testing::MakeTestMap(8, 80);
+  SaveMap(map, path_);
+  const std::vector<uint8_t> saved = ReadFileBytes(path_);
+  std::mt19937 random(5);
+  int failed = 0, same = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    std::vector<uint8_t> bytes = saved;
+    const int flips = 1 + trial % 10;
+    for (int f = 0; f < flips; ++f) {
+      const size_t at = 100 + random() % (bytes.size() - 100);
+      bytes[at] ^= static_cast<uint8_t>(1u << (random() % 8));
+    }
+    std::ofstream(path_, std::ios::binary | std::ios::trunc)
+        .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    try {
+      const Map loaded = LoadMap(path_);
+      ExpectMapsEqual(map, loaded);
+      ++same;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(path_), std::string::npos) << e.what();
+      ++failed;
+    }
+  }
+  EXPECT_GT(failed, 30);  // most flips land in data that is read
+  EXPECT_EQ(failed + same, 60);
+}
+
+TEST_F(MapStoreTest, OnlyDuskmapMapsAreRecognisedAsSuch) {
+  EXPECT_FALSE(IsDuskmapMapFile(path_));
+  SaveMap(testing::MakeTestMap(2), path_);
+  EXPECT_TRUE(IsDuskmapMapFile(path_));
+  const std::string other = (dir_ / "notes.db").string();
+  testing::ExecuteSql(other, "CREATE TABLE notes(x)");
+  EXPECT_FALSE(IsDuskmapMapFile(other));
+  std::ofstream((dir_ / "plain.txt").string()) << "text";
+  EXPECT_FALSE(IsDuskmapMapFile((dir_ / "plain.txt").string()));
+  EXPECT_FALSE(IsDuskmapMapFile(dir_.string()));
 }
 
 TEST_F(MapStoreTest, MissingOrForeignFileIsRejected) {

@@ -89,7 +89,7 @@ TEST(MapVocabulary, QuantizedWordsSurviveSaveAndLoad) {
   restored.Import(MapVocabularySnapshot(loaded));
   EXPECT_TRUE(restored.Export() == f.exported);
   // The recorded storage says float32: the stored rows have the wrong width.
-  testing::ExecuteSql(path, "UPDATE meta SET value = 'float32' WHERE key = 'word_storage'");
+  testing::ExecuteSqlResealed(path, "UPDATE meta SET value = 'float32' WHERE key = 'word_storage'");
   EXPECT_THROW(LoadMap(path), InputError);
   std::remove(path.c_str());
   Fixture float_map = MakeFixture();

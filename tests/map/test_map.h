@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 
+#include "slam/map/table_checksums.h"
+
 #include "slam/core/random.h"
 #include "slam/map/map.h"
 
@@ -97,6 +99,15 @@ inline void ExecuteSql(const std::string& path, const std::string& sql) {
   const int rc = sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr);
   sqlite3_close(db);
   ASSERT_EQ(rc, SQLITE_OK) << sql;
+}
+
+// Runs one SQL statement on a saved map file and records the table
+// checksums anew, as a map written with those values would have them: for
+// tests of the checks behind the checksums (row sizes, layouts).
+inline void ExecuteSqlResealed(const std::string& path, const std::string& sql) {
+  ExecuteSql(path, sql + "; DELETE FROM checksums;");
+  mapdb::SqliteDatabase db(path, /*read_only=*/false);
+  mapdb::WriteChecksums(db);
 }
 
 }  // namespace duskmap::testing
