@@ -4,6 +4,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <system_error>
 
 #include "slam/core/check.h"
 #include "slam/datasets/rtabmap_db_reader.h"
@@ -17,8 +18,29 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The status of `path` (following symlinks); a missing path gives
+// file_type::not_found. Any other failure (a symlink loop, no permission)
+// throws InputError "<path>: <problem>".
+fs::file_status StatusOf(const fs::path& path) {
+  std::error_code error;
+  const fs::file_status status = fs::status(path, error);
+  SLAM_THROW_IF_NOT(InputError, !error || status.type() == fs::file_type::not_found)
+      << path.string() << ": " << error.message();
+  return status;
+}
+
+bool IsRegularFile(const fs::path& path) {
+  return StatusOf(path).type() == fs::file_type::regular;
+}
+
+// std::filesystem's errors from the readers (a symlink loop met while listing
+// a folder, ...) as InputError naming the path and the problem.
+[[noreturn]] void ThrowAsInputError(const fs::filesystem_error& e, const std::string& path) {
+  throw InputError((e.path1().empty() ? path : e.path1().string()) + ": " + e.code().message());
+}
+
 bool IsSqliteFile(const fs::path& path) {
-  if (!fs::is_regular_file(path)) return false;
+  if (!IsRegularFile(path)) return false;
   if (path.extension() == ".db") return true;
   char header[16] = {};
   std::ifstream in(path, std::ios::binary);
@@ -27,19 +49,22 @@ bool IsSqliteFile(const fs::path& path) {
 }
 
 bool HasDatabaseFiles(const fs::path& folder) {
-  for (const auto& entry : fs::directory_iterator(folder)) {
-    if (entry.is_regular_file() && entry.path().extension() == ".db") return true;
+  std::error_code error;
+  for (fs::directory_iterator it(folder, error), end; !error && it != end; it.increment(error)) {
+    // Only .db entries are examined: a broken entry of another name is no concern here.
+    if (it->path().extension() == ".db" && IsRegularFile(it->path())) return true;
   }
+  SLAM_THROW_IF_NOT(InputError, !error) << folder.string() << ": " << error.message();
   return false;
 }
 
 std::vector<std::string> MatchingFormats(const fs::path& path) {
   if (IsSqliteFile(path)) return {"rtabmap-db"};
-  if (!fs::is_directory(path)) return {};
+  if (StatusOf(path).type() != fs::file_type::directory) return {};
   // duskmap's manifest and TUM's index files are decisive: their sessions
   // hold rgb/ folders too, which alone would also look like an image release.
-  if (fs::is_regular_file(path / kManifestFileName)) return {"synthetic"};
-  if (fs::is_regular_file(path / "rgb.txt") && fs::is_regular_file(path / "depth.txt")) {
+  if (IsRegularFile(path / kManifestFileName)) return {"synthetic"};
+  if (IsRegularFile(path / "rgb.txt") && IsRegularFile(path / "depth.txt")) {
     return {"tum"};
   }
   std::vector<std::string> formats;
@@ -58,9 +83,11 @@ std::unique_ptr<DatasetReader> OpenFormat(const std::string& path, const std::st
                                           const DatasetReadOptions& options) {
   if (format == "rtabmap-db") return OpenRtabmapDatabase(path, options);
   if (format == "rtabmap-images") return OpenRtabmapImages(path, options);
-  if (format == "tum") return OpenTumDataset(path);
+  TumReadOptions tum_options;
+  tum_options.allow_unordered = options.allow_unordered;
+  if (format == "tum") return OpenTumDataset(path, tum_options);
   SLAM_CHECK(format == "synthetic");
-  return OpenSyntheticDataset(path);
+  return OpenSyntheticDataset(path, tum_options);
 }
 
 }  // namespace
@@ -72,8 +99,14 @@ const std::vector<std::string>& DatasetFormats() {
 }
 
 std::string DetectDatasetFormat(const std::string& path) {
-  SLAM_THROW_IF_NOT(InputError, fs::exists(path)) << path << ": no such file or folder";
-  const std::vector<std::string> formats = MatchingFormats(path);
+  SLAM_THROW_IF_NOT(InputError, StatusOf(path).type() != fs::file_type::not_found)
+      << path << ": no such file or folder";
+  std::vector<std::string> formats;
+  try {
+    formats = MatchingFormats(path);
+  } catch (const fs::filesystem_error& e) {  // from FindImageSessions' folder listing
+    ThrowAsInputError(e, path);
+  }
   SLAM_THROW_IF_NOT(InputError, !formats.empty())
       << path << ": cannot detect the dataset format (no manifest.json, rgb.txt+depth.txt, "
          "rgb/ or <prefix>_rgb/ folder, or .db file); pass --dataset-format";
@@ -95,7 +128,12 @@ std::unique_ptr<DatasetReader> OpenDataset(const std::string& path, const std::s
                                                                format) != formats.end())
       << "dataset format '" << format << "' is unknown (expected auto, " << Join(formats) << ")";
   const std::string resolved = format == "auto" ? DetectDatasetFormat(path) : format;
-  std::unique_ptr<DatasetReader> reader = OpenFormat(path, resolved, options);
+  std::unique_ptr<DatasetReader> reader;
+  try {
+    reader = OpenFormat(path, resolved, options);
+  } catch (const fs::filesystem_error& e) {  // a reader's unchecked filesystem call
+    ThrowAsInputError(e, path);
+  }
   if (!options.skip_bad_frames) return reader;
   return std::make_unique<SkippingDatasetReader>(std::move(reader), options.skip_log);
 }

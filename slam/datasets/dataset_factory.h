@@ -25,7 +25,10 @@ std::string DetectDatasetFormat(const std::string& path);
 // Opens the dataset; `format` is one of DatasetFormats() or "auto". Throws
 // ConfigError for an unknown format name, InputError for unreadable data.
 // With options.skip_bad_frames, every session's unusable frames are skipped
-// and logged to options.skip_log (for every format).
+// and logged to options.skip_log (for every format); options.allow_unordered
+// reads the index files of "tum" and "synthetic" datasets leniently. A path
+// that cannot be examined (a symlink loop, no permission) is an InputError
+// naming it and the problem.
 std::unique_ptr<DatasetReader> OpenDataset(const std::string& path,
                                            const std::string& format = "auto");
 std::unique_ptr<DatasetReader> OpenDataset(const std::string& path, const std::string& format,

@@ -1,5 +1,5 @@
 // How a dataset is read: whether unusable frames stop the read or are skipped,
-// and where skipped frames are reported.
+// where skipped frames are reported, and how strictly TUM index files are read.
 #pragma once
 
 #include <cstdint>
@@ -33,6 +33,15 @@ struct DatasetReadOptions {
   bool skip_bad_frames = false;
   // Receives the skipped frames; required when skip_bad_frames is true.
   std::shared_ptr<SkipLog> skip_log;
+  // TUM-layout index files (formats "tum" and "synthetic"; the CLI's
+  // --allow-unordered). When false, an rgb.txt/depth.txt line out of order or
+  // duplicated, an rgb image without a depth image within 0.02 s, a depth
+  // image nearest to two rgb images, or one used by none, is an InputError
+  // naming the file and line. When true, such a folder is read leniently, as
+  // real recordings that drop frames need: lines sorted by timestamp, each rgb
+  // image paired with its nearest depth image, unmatched rgb images skipped
+  // (see TumReadOptions in slam/io/tum_dataset.h). Other formats ignore it.
+  bool allow_unordered = false;
 
   void Check() const;
 };

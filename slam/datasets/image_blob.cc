@@ -9,6 +9,7 @@
 
 #include "slam/core/check.h"
 #include "slam/datasets/rvl_codec.h"
+#include "slam/io/image_header.h"
 
 namespace duskmap {
 namespace {
@@ -44,10 +45,10 @@ void CheckComplete(const uint8_t* data, size_t size, BlobCodec codec, const std:
   }
 }
 
-// Images larger than this are refused before decoding: a header can declare
-// any size, and the decoder would allocate it (found by fuzzing: a 3-kB blob
-// declaring 2.6 GB of pixels). 64 Mpixel is far above any RGB-D camera.
-constexpr int64_t kMaxImagePixels = int64_t{1} << 26;
+// Images larger than kMaxImagePixels (slam/io/image_header.h, shared with the
+// file readers) are refused before decoding: a header can declare any size,
+// and the decoder would allocate it (found by fuzzing: a 3-kB blob declaring
+// 2.6 GB of pixels).
 
 uint32_t ReadBigEndian(const uint8_t* p, int bytes) {
   uint32_t value = 0;

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <system_error>
 
 #include <nlohmann/json.hpp>
 
@@ -16,8 +17,8 @@ namespace fs = std::filesystem;
 
 class SyntheticDatasetReader : public DatasetReader {
  public:
-  explicit SyntheticDatasetReader(const std::string& path)
-      : path_(path), manifest_(ReadManifest(path)) {
+  SyntheticDatasetReader(const std::string& path, const TumReadOptions& options)
+      : path_(path), options_(options), manifest_(ReadManifest(path)) {
     for (const ManifestSession& session : manifest_.sessions) {
       infos_.push_back(OpenSession(session.name)->info());
     }
@@ -30,13 +31,14 @@ class SyntheticDatasetReader : public DatasetReader {
       SessionInfo info;
       info.name = session.name;
       info.clock_time = session.clock_time;
-      return OpenTumSession(path_ + "/" + session.folder, info);
+      return OpenTumSession(path_ + "/" + session.folder, info, options_);
     }
     throw InputError(path_ + ": no session named '" + name + "'");
   }
 
  private:
   std::string path_;
+  TumReadOptions options_;
   DatasetManifest manifest_;
   std::vector<SessionInfo> infos_;
 };
@@ -59,7 +61,12 @@ void WriteManifest(const std::string& dataset_path, const DatasetManifest& manif
 
 DatasetManifest ReadManifest(const std::string& dataset_path) {
   const std::string path = dataset_path + "/" + kManifestFileName;
-  SLAM_THROW_IF_NOT(InputError, fs::is_regular_file(path))
+  std::error_code error;
+  const fs::file_status status = fs::status(path, error);
+  // A symlink loop or a permission problem is named as such, not as "missing".
+  SLAM_THROW_IF_NOT(InputError, !error || status.type() == fs::file_type::not_found)
+      << path << ": " << error.message();
+  SLAM_THROW_IF_NOT(InputError, status.type() == fs::file_type::regular)
       << path << ": missing (not a duskmap synthetic dataset)";
   DatasetManifest manifest;
   try {
@@ -93,8 +100,9 @@ DatasetManifest ReadManifest(const std::string& dataset_path) {
   return manifest;
 }
 
-std::unique_ptr<DatasetReader> OpenSyntheticDataset(const std::string& path) {
-  return std::make_unique<SyntheticDatasetReader>(path);
+std::unique_ptr<DatasetReader> OpenSyntheticDataset(const std::string& path,
+                                                    const TumReadOptions& options) {
+  return std::make_unique<SyntheticDatasetReader>(path, options);
 }
 
 }  // namespace duskmap

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "slam/io/dataset_reader.h"
+#include "slam/io/tum_dataset.h"
 
 namespace duskmap {
 
@@ -35,6 +36,9 @@ void WriteManifest(const std::string& dataset_path, const DatasetManifest& manif
 DatasetManifest ReadManifest(const std::string& dataset_path);
 
 // Opens a synthetic dataset; every listed session folder is validated now.
-std::unique_ptr<DatasetReader> OpenSyntheticDataset(const std::string& path);
+// The sessions' rgb.txt/depth.txt are read as OpenTumDataset reads them, with
+// `options` (strict 1:1 timestamps unless options.allow_unordered).
+std::unique_ptr<DatasetReader> OpenSyntheticDataset(const std::string& path,
+                                                    const TumReadOptions& options = {});
 
 }  // namespace duskmap

@@ -5,10 +5,12 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <system_error>
 
 #include <opencv2/imgcodecs.hpp>
 
 #include "slam/core/check.h"
+#include "slam/io/image_header.h"
 #include "slam/io/trajectory_io.h"
 #include "slam/io/tum_writer.h"
 
@@ -17,15 +19,33 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr double kMaxAssociationGapS = 0.02;
+// Real TUM recordings drop frames (rgb without depth within 20 ms): such a
+// recording is read as TUM's associate.py reads it with --allow-unordered.
+constexpr const char* kAllowUnorderedHint = "; --allow-unordered reads it as recorded";
 constexpr double kMaxPoseGapS = 0.05;
 
 struct IndexEntry {
   double timestamp_s = 0.0;
-  std::string file;  // relative to the sequence folder
+  std::string stamp;  // the timestamp as written, for messages
+  std::string file;   // relative to the sequence folder
+  int line = 0;       // 1-based line number in the index file
 };
 
-std::vector<IndexEntry> ReadIndex(const std::string& folder, const std::string& name) {
+// The status of `path` (following symlinks); a missing path gives
+// file_type::not_found. Any other failure (a symlink loop, no permission)
+// throws InputError "<path>: <problem>" instead of std::filesystem's error.
+fs::file_status StatusOf(const std::string& path) {
+  std::error_code error;
+  const fs::file_status status = fs::status(path, error);
+  SLAM_THROW_IF_NOT(InputError, !error || status.type() == fs::file_type::not_found)
+      << path << ": " << error.message();
+  return status;
+}
+
+std::vector<IndexEntry> ReadIndex(const std::string& folder, const std::string& name,
+                                  const TumReadOptions& options) {
   const std::string path = folder + "/" + name;
+  StatusOf(path);
   std::ifstream in(path);
   SLAM_THROW_IF_NOT(InputError, in.good()) << path << ": cannot open index file";
   std::vector<IndexEntry> entries;
@@ -37,16 +57,42 @@ std::vector<IndexEntry> ReadIndex(const std::string& folder, const std::string& 
     if (first == std::string::npos || line[first] == '#') continue;
     std::istringstream fields(line);
     IndexEntry entry;
-    SLAM_THROW_IF_NOT(InputError, static_cast<bool>(fields >> entry.timestamp_s >> entry.file) &&
+    entry.line = line_number;
+    fields >> std::ws;
+    const std::streamoff stamp_begin = fields.tellg();
+    const bool has_timestamp = static_cast<bool>(fields >> entry.timestamp_s);
+    if (has_timestamp) {
+      const std::streamoff stamp_end = fields.eof() ? static_cast<std::streamoff>(line.size())
+                                                    : static_cast<std::streamoff>(fields.tellg());
+      entry.stamp = line.substr(stamp_begin, stamp_end - stamp_begin);
+    }
+    SLAM_THROW_IF_NOT(InputError, has_timestamp && static_cast<bool>(fields >> entry.file) &&
                                       std::isfinite(entry.timestamp_s))
         << path << ":" << line_number << ": malformed line (expected 'timestamp filename')";
-    SLAM_THROW_IF_NOT(InputError, fs::is_regular_file(folder + "/" + entry.file))
+    SLAM_THROW_IF_NOT(InputError,
+                      StatusOf(folder + "/" + entry.file).type() == fs::file_type::regular)
         << folder << "/" << entry.file << ": missing image (listed in " << name << ":"
         << line_number << ")";
+    if (!options.allow_unordered && !entries.empty() &&
+        !(entry.timestamp_s > entries.back().timestamp_s)) {
+      // Lines so far are strictly increasing: an equal one is found by bisection.
+      const auto same = std::lower_bound(
+          entries.begin(), entries.end(), entry.timestamp_s,
+          [](const IndexEntry& e, double t) { return e.timestamp_s < t; });
+      SLAM_THROW_IF_NOT(InputError, same == entries.end() || same->timestamp_s != entry.timestamp_s)
+          << path << ":" << line_number << ": duplicate timestamp " << entry.stamp
+          << " (also on line " << same->line << ")" << kAllowUnorderedHint;
+      SLAM_THROW(InputError) << path << ":" << line_number << ": timestamp " << entry.stamp
+                             << " is not after line " << entries.back().line << "'s "
+                             << entries.back().stamp << " (out of order)" << kAllowUnorderedHint;
+    }
     entries.push_back(entry);
   }
-  std::stable_sort(entries.begin(), entries.end(),
-                   [](const IndexEntry& a, const IndexEntry& b) { return a.timestamp_s < b.timestamp_s; });
+  if (options.allow_unordered) {
+    std::stable_sort(entries.begin(), entries.end(), [](const IndexEntry& a, const IndexEntry& b) {
+      return a.timestamp_s < b.timestamp_s;
+    });
+  }
   return entries;
 }
 
@@ -56,42 +102,81 @@ struct FrameEntry {
   std::string depth_file;
 };
 
-std::vector<FrameEntry> Associate(const std::vector<IndexEntry>& rgb,
-                                  const std::vector<IndexEntry>& depth) {
-  std::vector<FrameEntry> frames;
-  for (const IndexEntry& color : rgb) {
-    const auto after = std::lower_bound(
-        depth.begin(), depth.end(), color.timestamp_s,
-        [](const IndexEntry& d, double t) { return d.timestamp_s < t; });
-    const IndexEntry* best = nullptr;
-    double best_gap = kMaxAssociationGapS;
-    for (auto it : {after, after == depth.begin() ? depth.end() : after - 1}) {
-      if (it == depth.end()) continue;
-      const double gap = std::abs(it->timestamp_s - color.timestamp_s);
-      if (gap <= best_gap) {
-        best_gap = gap;
-        best = &*it;
-      }
+// The depth entry of nearest timestamp within kMaxAssociationGapS of `t`, or
+// depth.end(); `depth` is sorted by timestamp.
+std::vector<IndexEntry>::const_iterator NearestDepth(const std::vector<IndexEntry>& depth,
+                                                     double t) {
+  const auto after = std::lower_bound(
+      depth.begin(), depth.end(), t,
+      [](const IndexEntry& d, double v) { return d.timestamp_s < v; });
+  auto best = depth.end();
+  double best_gap = kMaxAssociationGapS;
+  for (auto it : {after, after == depth.begin() ? depth.end() : after - 1}) {
+    if (it == depth.end()) continue;
+    const double gap = std::abs(it->timestamp_s - t);
+    if (gap <= best_gap) {
+      best_gap = gap;
+      best = it;
     }
-    if (best != nullptr) frames.push_back({color.timestamp_s, color.file, best->file});
+  }
+  return best;
+}
+
+// Pairs each rgb image with its nearest depth image. Unless allow_unordered,
+// the pairing must be 1:1 (every rgb and every depth line used once); the
+// first exception throws naming the index file and line.
+std::vector<FrameEntry> Associate(const std::string& folder, const std::vector<IndexEntry>& rgb,
+                                  const std::vector<IndexEntry>& depth,
+                                  const TumReadOptions& options) {
+  std::vector<FrameEntry> frames;
+  std::vector<const IndexEntry*> used_by(depth.size(), nullptr);  // the rgb entry of each depth
+  for (const IndexEntry& color : rgb) {
+    const auto best = NearestDepth(depth, color.timestamp_s);
+    if (options.allow_unordered) {
+      if (best != depth.end()) frames.push_back({color.timestamp_s, color.file, best->file});
+      continue;
+    }
+    SLAM_THROW_IF_NOT(InputError, best != depth.end())
+        << folder << "/rgb.txt:" << color.line << ": no depth image within "
+        << kMaxAssociationGapS << " s of " << color.stamp << " in depth.txt" << kAllowUnorderedHint;
+    const IndexEntry*& user = used_by[static_cast<size_t>(best - depth.begin())];
+    SLAM_THROW_IF_NOT(InputError, user == nullptr)
+        << folder << "/rgb.txt:" << color.line << ": the nearest depth image to " << color.stamp
+        << " (depth.txt:" << best->line << ", " << best->stamp << ") is already used by line "
+        << user->line << "'s " << user->stamp << " (one depth image for two rgb images)"
+        << kAllowUnorderedHint;
+    user = &color;
+    frames.push_back({color.timestamp_s, color.file, best->file});
+  }
+  if (!options.allow_unordered) {
+    for (size_t i = 0; i < depth.size(); ++i) {
+      SLAM_THROW_IF_NOT(InputError, used_by[i] != nullptr)
+          << folder << "/depth.txt:" << depth[i].line << ": depth image at " << depth[i].stamp
+          << " is not matched by any rgb.txt line (each rgb image takes its nearest depth "
+             "image within "
+          << kMaxAssociationGapS << " s)" << kAllowUnorderedHint;
+    }
   }
   return frames;
 }
 
 std::vector<TrajectoryPose> ReadOptionalTrajectory(const std::string& path) {
-  if (!fs::exists(path)) return {};
+  if (StatusOf(path).type() == fs::file_type::not_found) return {};
   return ReadTrajectory(path);
 }
 
 class TumSessionReader : public SessionReader {
  public:
-  TumSessionReader(const std::string& folder, SessionInfo info) : folder_(folder), info_(std::move(info)) {
-    SLAM_THROW_IF_NOT(InputError, fs::is_directory(folder_)) << folder_ << ": not a folder";
+  TumSessionReader(const std::string& folder, SessionInfo info, const TumReadOptions& options)
+      : folder_(folder), info_(std::move(info)) {
+    SLAM_THROW_IF_NOT(InputError, StatusOf(folder_).type() == fs::file_type::directory)
+        << folder_ << ": not a folder";
     const std::string calibration_path = folder_ + "/" + kCalibrationFileName;
-    calibration_ = fs::exists(calibration_path)
+    calibration_ = StatusOf(calibration_path).type() != fs::file_type::not_found
                        ? ReadCalibration(calibration_path)
                        : DefaultTumCalibration(fs::path(folder_).filename().string());
-    frames_ = Associate(ReadIndex(folder_, "rgb.txt"), ReadIndex(folder_, "depth.txt"));
+    frames_ = Associate(folder_, ReadIndex(folder_, "rgb.txt", options),
+                        ReadIndex(folder_, "depth.txt", options), options);
     ground_truth_ = ReadOptionalTrajectory(folder_ + "/groundtruth.txt");
     odometry_ = ReadOptionalTrajectory(folder_ + "/odometry.txt");
     info_.num_frames = static_cast<int64_t>(frames_.size());
@@ -126,6 +211,7 @@ class TumSessionReader : public SessionReader {
  private:
   cv::Mat ReadImage(const std::string& file, int flags, int expected_type) const {
     const std::string path = folder_ + "/" + file;
+    CheckImageFilePixelLimit(path);  // before the decoder allocates what the header declares
     cv::Mat image = cv::imread(path, flags);
     SLAM_THROW_IF_NOT(InputError, !image.empty()) << path << ": cannot read image (truncated or corrupt)";
     SLAM_THROW_IF_NOT(InputError, image.type() == expected_type)
@@ -144,35 +230,39 @@ class TumSessionReader : public SessionReader {
 
 class TumDatasetReader : public DatasetReader {
  public:
-  explicit TumDatasetReader(const std::string& path) : path_(path) {
+  TumDatasetReader(const std::string& path, const TumReadOptions& options)
+      : path_(path), options_(options) {
     std::string name = fs::path(path).lexically_normal().filename().string();
     if (name.empty()) name = fs::path(path).lexically_normal().parent_path().filename().string();
     SessionInfo info;
     info.name = name;
     // Opening validates the layout now, so a broken sequence fails early.
-    info_ = TumSessionReader(path_, info).info();
+    info_ = TumSessionReader(path_, info, options_).info();
   }
   std::string format() const override { return "tum"; }
   std::vector<SessionInfo> Sessions() const override { return {info_}; }
   std::unique_ptr<SessionReader> OpenSession(const std::string& name) const override {
     SLAM_THROW_IF_NOT(InputError, name == info_.name)
         << path_ << ": no session named '" << name << "' (the sequence is '" << info_.name << "')";
-    return std::make_unique<TumSessionReader>(path_, info_);
+    return std::make_unique<TumSessionReader>(path_, info_, options_);
   }
 
  private:
   std::string path_;
+  TumReadOptions options_;
   SessionInfo info_;
 };
 
 }  // namespace
 
-std::unique_ptr<SessionReader> OpenTumSession(const std::string& path, SessionInfo info) {
-  return std::make_unique<TumSessionReader>(path, std::move(info));
+std::unique_ptr<SessionReader> OpenTumSession(const std::string& path, SessionInfo info,
+                                              const TumReadOptions& options) {
+  return std::make_unique<TumSessionReader>(path, std::move(info), options);
 }
 
-std::unique_ptr<DatasetReader> OpenTumDataset(const std::string& path) {
-  return std::make_unique<TumDatasetReader>(path);
+std::unique_ptr<DatasetReader> OpenTumDataset(const std::string& path,
+                                              const TumReadOptions& options) {
+  return std::make_unique<TumDatasetReader>(path, options);
 }
 
 }  // namespace duskmap

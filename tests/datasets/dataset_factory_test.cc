@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "slam/io/synthetic_dataset.h"
+#include "slam/io/tum_writer.h"
 #include "tests/datasets/dataset_test_util.h"
 
 namespace duskmap {
@@ -89,6 +91,108 @@ TEST(OpenDataset, SkipBadFramesSkipsFramesThatFailToDecodeAndCountsThem) {
   EXPECT_EQ(options.skip_log->count(), 2);
   EXPECT_EQ(options.skip_log->messages()[0],
             db + ": node 2: image: JPEG is truncated (no end-of-image marker)");
+}
+
+// A TUM-layout folder of `count` tiny frames at 100, 101, ... s whose rgb.txt
+// lists the first two frames in reverse order (lines 3 and 4).
+std::string WriteUnorderedTumFolder(const std::string& folder, int count) {
+  TumCalibration calibration;
+  calibration.camera.width = 8;
+  calibration.camera.height = 6;
+  calibration.camera.fx = calibration.camera.fy = 8.0;
+  calibration.camera.cx = 3.5;
+  calibration.camera.cy = 2.5;
+  calibration.depth_scale = 1000.0;
+  TumSessionWriter writer(folder, calibration);
+  for (int i = 0; i < count; ++i) {
+    RgbdFrame frame;
+    frame.timestamp_s = 100.0 + i;
+    frame.bgr = cv::Mat(6, 8, CV_8UC3, cv::Scalar(i, 2, 3));
+    frame.depth_m = cv::Mat(6, 8, CV_32FC1, cv::Scalar(1.5f));
+    writer.Write(frame);
+  }
+  writer.Finish();
+  std::vector<std::string> lines;
+  {
+    std::ifstream in(folder + "/rgb.txt");
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+  }
+  std::swap(lines[2], lines[3]);
+  std::ofstream out(folder + "/rgb.txt");
+  for (const std::string& line : lines) out << line << "\n";
+  return folder;
+}
+
+TEST(OpenDataset, AllowUnorderedReachesTheTumReader) {
+  const std::string tum = WriteUnorderedTumFolder(testing::MakeTempDir() + "/seq", 3);
+  EXPECT_THROW(OpenDataset(tum), InputError);
+  EXPECT_EQ(ErrorOf([&] { OpenDataset(tum, "tum"); }),
+            tum + "/rgb.txt:4: timestamp 100.000000 is not after line 3's 101.000000 (out of "
+                  "order); --allow-unordered reads it as recorded");
+  DatasetReadOptions options;
+  options.allow_unordered = true;
+  const auto reader = OpenDataset(tum, "auto", options);
+  EXPECT_EQ(reader->format(), "tum");
+  const auto frames = testing::ReadAllFrames(*reader->OpenSession("seq"));
+  ASSERT_EQ(frames.size(), 3u);
+  EXPECT_DOUBLE_EQ(frames[0].timestamp_s, 100.0);
+  EXPECT_DOUBLE_EQ(frames[1].timestamp_s, 101.0);
+}
+
+TEST(OpenDataset, AllowUnorderedReachesTheSyntheticReader) {
+  const std::string root = testing::MakeTempDir();
+  WriteUnorderedTumFolder(root + "/1", 2);
+  WriteManifest(root, {{{"1", "1", "16:46", "mapping"}}});
+  EXPECT_THROW(OpenDataset(root), InputError);
+  EXPECT_EQ(ErrorOf([&] { OpenDataset(root, "synthetic"); }),
+            root + "/1/rgb.txt:4: timestamp 100.000000 is not after line 3's 101.000000 (out of "
+                   "order); --allow-unordered reads it as recorded");
+  DatasetReadOptions options;
+  options.allow_unordered = true;
+  EXPECT_EQ(OpenDataset(root, "auto", options)->Sessions()[0].num_frames, 2);
+  // With skipping too (the wrapper keeps the lenient reading).
+  options.skip_bad_frames = true;
+  options.skip_log = std::make_shared<SkipLog>();
+  EXPECT_EQ(OpenDataset(root, "synthetic", options)->Sessions()[0].num_frames, 2);
+}
+
+TEST(DetectDatasetFormat, SymlinkLoopsAreInputErrorsNamingThePath) {
+  const std::string root = testing::MakeTempDir();
+  const std::string loop_problem = ": Too many levels of symbolic links";
+  // The dataset path itself.
+  fs::create_symlink(root + "/loop", root + "/loop");
+  EXPECT_THROW(DetectDatasetFormat(root + "/loop"), InputError);
+  EXPECT_EQ(ErrorOf([&] { DetectDatasetFormat(root + "/loop"); }), root + "/loop" + loop_problem);
+  EXPECT_THROW(OpenDataset(root + "/loop"), InputError);
+  // An index file that decides the format.
+  fs::create_directories(root + "/tum");
+  testing::WriteText(root + "/tum/rgb.txt", "");
+  fs::create_symlink(root + "/tum/depth.txt", root + "/tum/depth.txt");
+  EXPECT_EQ(ErrorOf([&] { DetectDatasetFormat(root + "/tum"); }),
+            root + "/tum/depth.txt" + loop_problem);
+  // A .db file in a folder of databases.
+  fs::create_directories(root + "/dbs");
+  fs::create_symlink(root + "/dbs/a.db", root + "/dbs/a.db");
+  EXPECT_EQ(ErrorOf([&] { DetectDatasetFormat(root + "/dbs"); }),
+            root + "/dbs/a.db" + loop_problem);
+  // An entry met while looking for image sessions (<prefix>_rgb/ folders).
+  fs::create_directories(root + "/export");
+  fs::create_symlink(root + "/export/x", root + "/export/x");
+  EXPECT_THROW(DetectDatasetFormat(root + "/export"), InputError);
+  EXPECT_EQ(ErrorOf([&] { DetectDatasetFormat(root + "/export"); }),
+            root + "/export/x" + loop_problem);
+}
+
+TEST(OpenDataset, SymlinkLoopInsideATumFolderIsAnInputError) {
+  const std::string tum = testing::MakeTempDir() + "/seq";
+  WriteUnorderedTumFolder(tum, 2);
+  fs::remove(tum + "/odometry.txt");
+  fs::create_symlink(tum + "/odometry.txt", tum + "/odometry.txt");
+  DatasetReadOptions options;
+  options.allow_unordered = true;
+  EXPECT_THROW(OpenDataset(tum, "tum", options), InputError);
+  EXPECT_EQ(ErrorOf([&] { OpenDataset(tum, "auto", options); }),
+            tum + "/odometry.txt: Too many levels of symbolic links");
 }
 
 }  // namespace

@@ -61,6 +61,53 @@ std::string WriteSession(const fs::path& folder, const std::vector<RgbdFrame>& f
   return folder.string();
 }
 
+// The message of the InputError `f` throws ("" when it throws none).
+template <typename F>
+std::string ErrorOf(F f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    // Ordering errors end with how to read such a recording anyway
+    // (checked once in AllowUnorderedHintEndsOrderingErrors).
+    std::string message = e.what();
+    const std::string hint = "; --allow-unordered reads it as recorded";
+    if (message.size() > hint.size() && message.compare(message.size() - hint.size(), hint.size(), hint) == 0) {
+      message.resize(message.size() - hint.size());
+    }
+    return message;
+  }
+  return "";
+}
+
+TumReadOptions Lenient() {
+  TumReadOptions options;
+  options.allow_unordered = true;
+  return options;
+}
+
+std::vector<std::string> ReadLines(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+void WriteLines(const std::string& path, const std::vector<std::string>& lines) {
+  std::ofstream out(path);
+  for (const std::string& line : lines) out << line << "\n";
+}
+
+// The index line of a written frame ("<stamp> rgb/<stamp>.png").
+std::string IndexLine(const std::string& kind, double timestamp_s) {
+  return TumStamp(timestamp_s) + " " + kind + "/" + TumStamp(timestamp_s) + ".png";
+}
+
+std::vector<double> Timestamps(SessionReader& session) {
+  std::vector<double> timestamps;
+  while (const std::optional<RgbdFrame> f = session.Next()) timestamps.push_back(f->timestamp_s);
+  return timestamps;
+}
+
 TEST(TumDataset, WriteReadRoundTrip) {
   const std::vector<RgbdFrame> frames = MakeFrames(4);
   const std::string path = WriteSession(TempRoot("round") / "seq", frames);
@@ -128,14 +175,164 @@ TEST(TumDataset, RealTumFolderUsesPublishedIntrinsicsAndAssociates) {
   std::ofstream(folder / "rgb.txt") << "# color\n1.000000 rgb/1.000000.png\n2.000000 rgb/2.000000.png\n";
   std::ofstream(folder / "depth.txt") << "1.010000 depth/1.010000.png\n";
   std::ofstream(folder / "groundtruth.txt") << "0.99 1 2 3 0 0 0 1\n1.02 1 2 3 0 0 0 1\n";
-  std::unique_ptr<DatasetReader> dataset = OpenTumDataset(folder.string());
-  EXPECT_EQ(dataset->Sessions()[0].num_frames, 1);  // rgb 2.0 has no depth within 0.02 s
+  // rgb 2.0 has no depth within 0.02 s: an error, unless read leniently.
+  EXPECT_EQ(ErrorOf([&] { OpenTumDataset(folder.string()); }),
+            folder.string() + "/rgb.txt:3: no depth image within 0.02 s of 2.000000 in depth.txt");
+  std::unique_ptr<DatasetReader> dataset = OpenTumDataset(folder.string(), Lenient());
+  EXPECT_EQ(dataset->Sessions()[0].num_frames, 1);  // rgb 2.0 is skipped
   const std::optional<RgbdFrame> f = dataset->OpenSession("rgbd_dataset_freiburg1_xyz")->Next();
   ASSERT_TRUE(f.has_value());
   EXPECT_DOUBLE_EQ(f->camera.fx, 517.3);
   EXPECT_FLOAT_EQ(f->depth_m.at<float>(10, 10), 1.0f);  // 5000 units per metre
   ASSERT_TRUE(f->world_from_camera.has_value());
   EXPECT_NEAR(f->world_from_camera->translation.y(), 2.0, 1e-9);
+}
+
+// The writer's index files: two comment lines, then one line per frame
+// (frame k on line k + 3), rgb and depth with the same timestamps.
+TEST(TumDataset, GeneratedIndexFilesAreStrictlyIncreasingAndOneToOne) {
+  const std::string path = WriteSession(TempRoot("strict_ok") / "seq", MakeFrames(5));
+  EXPECT_EQ(ReadLines(path + "/rgb.txt")[2], IndexLine("rgb", 60000.0));
+  EXPECT_EQ(ReadLines(path + "/depth.txt")[6], IndexLine("depth", 60004.0));
+  EXPECT_EQ(OpenTumDataset(path)->Sessions()[0].num_frames, 5);
+}
+
+TEST(TumDataset, OutOfOrderLineNamesFileAndLine) {
+  const std::string path = WriteSession(TempRoot("unordered") / "seq", MakeFrames(4));
+  std::vector<std::string> lines = ReadLines(path + "/rgb.txt");
+  std::swap(lines[3], lines[4]);  // lines 4 and 5: 60002 before 60001
+  WriteLines(path + "/rgb.txt", lines);
+  EXPECT_EQ(ErrorOf([&] { OpenTumDataset(path); }),
+            path + "/rgb.txt:5: timestamp 60001.000000 is not after line 4's 60002.000000 (out of "
+                   "order)");
+  // Leniently, the lines are sorted: every frame, in time order.
+  std::unique_ptr<DatasetReader> dataset = OpenTumDataset(path, Lenient());
+  EXPECT_EQ(Timestamps(*dataset->OpenSession("seq")),
+            (std::vector<double>{60000.0, 60001.0, 60002.0, 60003.0}));
+}
+
+TEST(TumDataset, OutOfOrderDepthLineNamesDepthTxt) {
+  const std::string path = WriteSession(TempRoot("unordered_depth") / "seq", MakeFrames(3));
+  std::vector<std::string> lines = ReadLines(path + "/depth.txt");
+  std::swap(lines[2], lines[4]);
+  WriteLines(path + "/depth.txt", lines);
+  const std::string message = ErrorOf([&] { OpenTumDataset(path); });
+  EXPECT_EQ(message.rfind(path + "/depth.txt:4: timestamp 60001.000000 is not after line 3's "
+                                 "60002.000000",
+                          0),
+            0u)
+      << message;
+  EXPECT_EQ(OpenTumDataset(path, Lenient())->Sessions()[0].num_frames, 3);
+}
+
+TEST(TumDataset, AllowUnorderedHintEndsOrderingErrors) {
+  const std::string path = WriteSession(TempRoot("hint") / "seq", MakeFrames(3));
+  std::vector<std::string> lines = ReadLines(path + "/rgb.txt");
+  std::swap(lines[2], lines[4]);
+  WriteLines(path + "/rgb.txt", lines);
+  try {
+    OpenTumDataset(path);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("(out of order); --allow-unordered reads it as recorded"), std::string::npos)
+        << message;
+  }
+}
+
+TEST(TumDataset, DuplicateLineNamesBothLines) {
+  const std::string path = WriteSession(TempRoot("duplicate") / "seq", MakeFrames(3));
+  std::vector<std::string> lines = ReadLines(path + "/rgb.txt");
+  lines.push_back(lines[3]);  // line 6 repeats line 4 (60001)
+  WriteLines(path + "/rgb.txt", lines);
+  EXPECT_EQ(ErrorOf([&] { OpenTumDataset(path); }),
+            path + "/rgb.txt:6: duplicate timestamp 60001.000000 (also on line 4)");
+  // An adjacent repeat is named the same way.
+  lines.pop_back();
+  lines.insert(lines.begin() + 4, lines[3]);
+  WriteLines(path + "/rgb.txt", lines);
+  EXPECT_EQ(ErrorOf([&] { OpenTumDataset(path); }),
+            path + "/rgb.txt:5: duplicate timestamp 60001.000000 (also on line 4)");
+  // Leniently, as before: the frame is read twice.
+  std::unique_ptr<DatasetReader> dataset = OpenTumDataset(path, Lenient());
+  EXPECT_EQ(Timestamps(*dataset->OpenSession("seq")),
+            (std::vector<double>{60000.0, 60001.0, 60001.0, 60002.0}));
+}
+
+TEST(TumDataset, RgbLineWithoutDepthNamesTheRgbLine) {
+  const std::string path = WriteSession(TempRoot("no_depth") / "seq", MakeFrames(4));
+  std::vector<std::string> lines = ReadLines(path + "/depth.txt");
+  lines.erase(lines.begin() + 4);  // depth 60002
+  WriteLines(path + "/depth.txt", lines);
+  EXPECT_EQ(ErrorOf([&] { OpenTumDataset(path); }),
+            path + "/rgb.txt:5: no depth image within 0.02 s of 60002.000000 in depth.txt");
+  // Leniently, as before: the frame is skipped.
+  std::unique_ptr<DatasetReader> dataset = OpenTumDataset(path, Lenient());
+  EXPECT_EQ(Timestamps(*dataset->OpenSession("seq")),
+            (std::vector<double>{60000.0, 60001.0, 60003.0}));
+}
+
+TEST(TumDataset, DepthImageNearestToTwoRgbLinesIsAnError) {
+  const std::string path = WriteSession(TempRoot("depth_twice") / "seq", MakeFrames(3));
+  std::vector<std::string> lines = ReadLines(path + "/rgb.txt");
+  // rgb 60000.010 (line 4) has depth 60000 (depth.txt:3) as its nearest, as rgb 60000 has.
+  lines.insert(lines.begin() + 3, "60000.010000 rgb/" + TumStamp(60000.0) + ".png");
+  WriteLines(path + "/rgb.txt", lines);
+  EXPECT_EQ(ErrorOf([&] { OpenTumDataset(path); }),
+            path + "/rgb.txt:4: the nearest depth image to 60000.010000 (depth.txt:3, "
+                   "60000.000000) is already used by line 3's 60000.000000 (one depth image for "
+                   "two rgb images)");
+  EXPECT_EQ(OpenTumDataset(path, Lenient())->Sessions()[0].num_frames, 4);
+}
+
+TEST(TumDataset, DepthLineWithoutRgbNamesTheDepthLine) {
+  const std::string path = WriteSession(TempRoot("no_rgb") / "seq", MakeFrames(4));
+  std::vector<std::string> lines = ReadLines(path + "/rgb.txt");
+  lines.erase(lines.begin() + 3);  // rgb 60001: its frame would vanish unnoticed
+  WriteLines(path + "/rgb.txt", lines);
+  EXPECT_EQ(ErrorOf([&] { OpenTumDataset(path); }),
+            path + "/depth.txt:4: depth image at 60001.000000 is not matched by any rgb.txt line "
+                   "(each rgb image takes its nearest depth image within 0.02 s)");
+  EXPECT_EQ(OpenTumDataset(path, Lenient())->Sessions()[0].num_frames, 3);
+}
+
+TEST(TumDataset, ImageOverThePixelLimitIsRefusedBeforeDecoding) {
+  const std::string path = WriteSession(TempRoot("huge") / "seq", MakeFrames(2));
+  const std::string victim = path + "/rgb/" + TumStamp(60001.0) + ".png";
+  {
+    // A PNG signature and an IHDR chunk declaring 20000x20000 8-bit RGB, and
+    // no pixel data: decoding it would allocate 1.2 GB before failing.
+    const unsigned char header[] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A,
+                                    0, 0, 0, 13, 'I', 'H', 'D', 'R',
+                                    0, 0, 0x4E, 0x20, 0, 0, 0x4E, 0x20,
+                                    8, 2, 0, 0, 0, 0, 0, 0, 0};
+    std::ofstream(victim, std::ios::binary | std::ios::trunc)
+        .write(reinterpret_cast<const char*>(header), sizeof(header));
+  }
+  std::unique_ptr<SessionReader> session = OpenTumDataset(path)->OpenSession("seq");
+  EXPECT_TRUE(session->Next().has_value());
+  EXPECT_EQ(ErrorOf([&] { session->Next(); }),
+            victim + ": 20000x20000 image exceeds the 64-Mpixel limit");
+}
+
+TEST(TumDataset, SymlinkLoopsAreInputErrorsNamingThePath) {
+  const std::string path = WriteSession(TempRoot("loop") / "seq", MakeFrames(2));
+  const std::string loop_problem = ": Too many levels of symbolic links";
+  // A listed image.
+  const std::string image = path + "/depth/" + TumStamp(60001.0) + ".png";
+  fs::remove(image);
+  fs::create_symlink(image, image);
+  EXPECT_EQ(ErrorOf([&] { OpenTumDataset(path); }), image + loop_problem);
+  // An optional file (ground truth), which is otherwise tested for existence.
+  const std::string other = WriteSession(TempRoot("loop_truth") / "seq", MakeFrames(2));
+  const std::string truth = other + "/groundtruth.txt";
+  fs::remove(truth);
+  fs::create_symlink(truth, truth);
+  EXPECT_EQ(ErrorOf([&] { OpenTumDataset(other); }), truth + loop_problem);
+  // The sequence folder itself.
+  const std::string folder = (TempRoot("loop_folder") / "seq").string();
+  fs::create_symlink(folder, folder);
+  EXPECT_EQ(ErrorOf([&] { OpenTumDataset(folder); }), folder + loop_problem);
 }
 
 TEST(SyntheticDataset, ManifestListsSessions) {
@@ -158,6 +355,27 @@ TEST(SyntheticDataset, MissingSessionFolderThrows) {
   WriteManifest(root.string(), {{{"1", "1", "16:46", "mapping"}}});
   EXPECT_THROW(OpenSyntheticDataset(root.string()), InputError);
   EXPECT_THROW(OpenSyntheticDataset((root / "nowhere").string()), InputError);
+}
+
+TEST(SyntheticDataset, SessionIndexFilesAreReadStrictlyUnlessAllowed) {
+  const fs::path root = TempRoot("synthetic_strict");
+  WriteSession(root / "1", MakeFrames(3));
+  WriteManifest(root.string(), {{{"1", "1", "16:46", "mapping"}}});
+  const std::string rgb = (root / "1" / "rgb.txt").string();
+  std::vector<std::string> lines = ReadLines(rgb);
+  std::swap(lines[2], lines[3]);
+  WriteLines(rgb, lines);
+  EXPECT_EQ(ErrorOf([&] { OpenSyntheticDataset(root.string()); }),
+            rgb + ":4: timestamp 60000.000000 is not after line 3's 60001.000000 (out of order)");
+  EXPECT_EQ(OpenSyntheticDataset(root.string(), Lenient())->Sessions()[0].num_frames, 3);
+}
+
+TEST(SyntheticDataset, ManifestSymlinkLoopIsAnInputError) {
+  const fs::path root = TempRoot("synthetic_loop");
+  const std::string manifest = (root / kManifestFileName).string();
+  fs::create_symlink(manifest, manifest);
+  EXPECT_EQ(ErrorOf([&] { OpenSyntheticDataset(root.string()); }),
+            manifest + ": Too many levels of symbolic links");
 }
 
 }  // namespace

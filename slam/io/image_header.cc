@@ -1,0 +1,147 @@
+#include "slam/io/image_header.h"
+
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+
+#include "slam/core/check.h"
+
+namespace duskmap {
+namespace {
+
+constexpr uint8_t kPngMagic[8] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
+// Bytes read up front: enough for PNG's IHDR and a PNM header with comments.
+constexpr size_t kHeadBytes = 4096;
+// JPEG marker segments visited before giving up (each payload is at most
+// 64 kB, so real files reach their frame header within a few dozen).
+constexpr int kMaxJpegMarkers = 100000;
+
+int64_t ReadBigEndian(const uint8_t* p, int bytes) {
+  int64_t value = 0;
+  for (int i = 0; i < bytes; ++i) value = (value << 8) | p[i];
+  return value;
+}
+
+bool IsPng(const uint8_t* data, size_t size) {
+  return size >= 8 && std::memcmp(data, kPngMagic, 8) == 0;
+}
+
+bool IsJpeg(const uint8_t* data, size_t size) {
+  return size >= 3 && data[0] == 0xFF && data[1] == 0xD8 && data[2] == 0xFF;
+}
+
+bool IsPnm(const uint8_t* data, size_t size) {
+  return size >= 3 && data[0] == 'P' && data[1] >= '1' && data[1] <= '6' &&
+         std::strchr(" \t\r\n#", data[2]) != nullptr && data[2] != '\0';
+}
+
+std::optional<ImageHeaderSize> PngSize(const uint8_t* data, size_t size) {
+  if (size < 24 || std::memcmp(data + 12, "IHDR", 4) != 0) return std::nullopt;
+  return ImageHeaderSize{ReadBigEndian(data + 16, 4), ReadBigEndian(data + 20, 4)};
+}
+
+// PNM: magic, then width and height as decimal numbers separated by
+// whitespace, with '#' comments running to the end of their line.
+std::optional<ImageHeaderSize> PnmSize(const uint8_t* data, size_t size) {
+  size_t i = 2;
+  int64_t values[2] = {0, 0};
+  for (int64_t& value : values) {
+    while (i < size) {
+      if (data[i] == '#') {
+        while (i < size && data[i] != '\n' && data[i] != '\r') ++i;
+      } else if (std::strchr(" \t\r\n\v\f", data[i]) != nullptr && data[i] != '\0') {
+        ++i;
+      } else {
+        break;
+      }
+    }
+    if (i >= size || data[i] < '0' || data[i] > '9') return std::nullopt;
+    while (i < size && data[i] >= '0' && data[i] <= '9') {
+      // Saturates far above the limit instead of overflowing.
+      value = std::min<int64_t>(value * 10 + (data[i] - '0'), int64_t{1} << 40);
+      ++i;
+    }
+    if (i >= size) return std::nullopt;  // the number may go on past what was read
+  }
+  return ImageHeaderSize{values[0], values[1]};
+}
+
+// Walks the JPEG marker segments after SOI up to the first frame header
+// (SOF0-SOF15 except DHT C4, JPG C8 and DAC CC). `read(offset, out, n)` reads
+// n bytes at offset and returns false past the end.
+template <typename ReadAt>
+std::optional<ImageHeaderSize> JpegSize(const ReadAt& read) {
+  uint64_t i = 2;
+  for (int step = 0; step < kMaxJpegMarkers; ++step) {
+    uint8_t marker[4];
+    if (!read(i, marker, 2) || marker[0] != 0xFF) return std::nullopt;
+    const uint8_t code = marker[1];
+    if (code == 0xFF) {  // fill byte
+      ++i;
+      continue;
+    }
+    if (code == 0x01 || (code >= 0xD0 && code <= 0xD7)) {  // TEM, RSTn: no length
+      i += 2;
+      continue;
+    }
+    if (code == 0xD8 || code == 0xD9 || code == 0xDA) return std::nullopt;  // no frame header
+    if (!read(i + 2, marker + 2, 2)) return std::nullopt;
+    const int64_t length = ReadBigEndian(marker + 2, 2);
+    if (length < 2) return std::nullopt;
+    const bool start_of_frame =
+        code >= 0xC0 && code <= 0xCF && code != 0xC4 && code != 0xC8 && code != 0xCC;
+    if (start_of_frame) {
+      uint8_t frame[5];  // precision, height, width
+      if (length < 7 || !read(i + 4, frame, 5)) return std::nullopt;
+      return ImageHeaderSize{ReadBigEndian(frame + 3, 2), ReadBigEndian(frame + 1, 2)};
+    }
+    i += 2 + static_cast<uint64_t>(length);
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<ImageHeaderSize> ReadImageHeaderSize(const uint8_t* data, size_t size) {
+  if (IsPng(data, size)) return PngSize(data, size);
+  if (IsPnm(data, size)) return PnmSize(data, size);
+  if (IsJpeg(data, size)) {
+    return JpegSize([&](uint64_t offset, uint8_t* out, size_t n) {
+      if (offset > size || n > size - offset) return false;
+      std::memcpy(out, data + offset, n);
+      return true;
+    });
+  }
+  return std::nullopt;
+}
+
+std::optional<ImageHeaderSize> ReadImageFileHeaderSize(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in.good()) return std::nullopt;
+  uint8_t head[kHeadBytes];
+  in.read(reinterpret_cast<char*>(head), sizeof(head));
+  const size_t got = static_cast<size_t>(in.gcount());
+  if (!IsJpeg(head, got)) return ReadImageHeaderSize(head, got);
+  return JpegSize([&](uint64_t offset, uint8_t* out, size_t n) {
+    if (offset + n <= got) {
+      std::memcpy(out, head + offset, n);
+      return true;
+    }
+    in.clear();
+    in.seekg(static_cast<std::streamoff>(offset));
+    in.read(reinterpret_cast<char*>(out), static_cast<std::streamsize>(n));
+    return in.good() && static_cast<size_t>(in.gcount()) == n;
+  });
+}
+
+void CheckImageFilePixelLimit(const std::string& path) {
+  const std::optional<ImageHeaderSize> size = ReadImageFileHeaderSize(path);
+  if (!size) return;
+  // Sides are checked first so that the product cannot overflow.
+  SLAM_THROW_IF_NOT(InputError, size->width <= kMaxImagePixels && size->height <= kMaxImagePixels &&
+                                    size->width * size->height <= kMaxImagePixels)
+      << path << ": " << size->width << "x" << size->height << " image exceeds the "
+      << (kMaxImagePixels >> 20) << "-Mpixel limit";
+}
+
+}  // namespace duskmap

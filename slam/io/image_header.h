@@ -1,0 +1,39 @@
+// The size an image file declares in its header, read without decoding it, so
+// that a dataset image too large to decode is refused before the decoder
+// allocates it (a header can declare any size: a few bytes can ask for
+// gigabytes). Recognised: PNG (IHDR), JPEG (the SOFn frame header), and the
+// PNM family (P1-P6: PBM, PGM, PPM). Anything else is left to the decoder.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace duskmap {
+
+// The most pixels a dataset image may have (64 Mpixels, far above any RGB-D
+// camera); shared by the file readers and the database blob decoder.
+inline constexpr int64_t kMaxImagePixels = int64_t{1} << 26;
+
+struct ImageHeaderSize {
+  int64_t width = 0;
+  int64_t height = 0;
+};
+
+// The width and height declared by the header of a PNG, JPEG or PNM image in
+// `data`; nullopt when the bytes are none of these, or the header is cut
+// short or does not say (the decoder then judges the file itself).
+std::optional<ImageHeaderSize> ReadImageHeaderSize(const uint8_t* data, size_t size);
+
+// The same for a file; reads only the header (for JPEG, the marker segments
+// before the frame header, skipping their payloads). nullopt also when the
+// file cannot be opened.
+std::optional<ImageHeaderSize> ReadImageFileHeaderSize(const std::string& path);
+
+// Throws InputError "<path>: <w>x<h> image exceeds the 64-Mpixel limit" when
+// the file's header declares more than kMaxImagePixels pixels; does nothing
+// for smaller images and for files whose size the header does not give.
+void CheckImageFilePixelLimit(const std::string& path);
+
+}  // namespace duskmap
