@@ -1,12 +1,15 @@
 #include "experiments/report_output.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <iostream>
 #include <optional>
 
 #include "slam/core/check.h"
+#include "slam/core/json_fields.h"
 #include "slam/experiment/paper_reference.h"
 #include "slam/experiment/report_builder.h"
+#include "slam/io/output_safety.h"
 
 namespace duskmap::cli {
 namespace fs = std::filesystem;
@@ -24,6 +27,29 @@ std::string ShellQuote(const std::string& text) {
   return quoted + "'";
 }
 
+// The report folder is new, empty, or an earlier report (tables.md and
+// cells.csv); it is none of the inputs and does not hold the results.
+void CheckReportFolder(const ReportRequest& request) {
+  std::vector<NamedPath> inputs = {{"config", request.config_path}};
+  for (const fs::path& dir : request.results_dirs) {
+    inputs.push_back({"--results", (dir / "jobs").string()});
+    inputs.push_back({"--results", (dir / "run.json").string()});
+    SLAM_THROW_IF_NOT(InputError, !IsSameOrInside(dir, request.output_dir))
+        << request.output_dir.string() << ": the report folder would hold the results folder "
+        << dir.string() << "; choose another --output";
+  }
+  CheckOutputsApartFromInputs({{"--output", request.output_dir.string()}}, inputs);
+  std::error_code error;
+  if (!fs::exists(request.output_dir, error)) return;
+  const bool report = fs::is_regular_file(request.output_dir / "tables.md", error) &&
+                      fs::is_regular_file(request.output_dir / "cells.csv", error);
+  SLAM_THROW_IF_NOT(InputError, fs::is_directory(request.output_dir, error) &&
+                                    (report || fs::is_empty(request.output_dir, error)))
+      << request.output_dir.string()
+      << ": exists and is not an earlier report (no tables.md and cells.csv); choose a new or "
+         "empty --output";
+}
+
 }  // namespace
 
 int WriteExperimentReport(const ReportRequest& request) {
@@ -39,6 +65,23 @@ int WriteExperimentReport(const ReportRequest& request) {
         << ": another run (features or sessions differ from "
         << (request.results_dirs.front() / "run.json").string() << ")";
   }
+  // The config must be the one the run used (its record in run.json, when
+  // the run wrote one): another config would label the results wrongly.
+  if (!manifest.configuration.is_null()) {
+    const std::string difference = FirstJsonDifference(manifest.configuration.value("experiment", nlohmann::json()),
+                                                       ReadJsonFile(request.config_path));
+    SLAM_THROW_IF_NOT(ConfigError, difference.empty())
+        << request.config_path << ": not the config of the run in "
+        << (request.results_dirs.front() / "run.json").string() << " (first difference at "
+        << (difference[0] == ' ' ? "the top" + difference : difference) << ")";
+  }
+  for (const std::string& feature : manifest.features) {
+    SLAM_THROW_IF_NOT(ConfigError, std::find(options.features.begin(), options.features.end(),
+                                             feature) != options.features.end())
+        << request.config_path << ": does not list feature " << feature << " of the run in "
+        << (request.results_dirs.front() / "run.json").string();
+  }
+  CheckReportFolder(request);
   const ExperimentPlan plan = PlanFromManifest(options, manifest);
   ExperimentOptions reported = options;
   reported.features = manifest.features;

@@ -17,6 +17,7 @@ struct InfoArgs {
   std::string path;
   std::string format = "auto";
   bool skip_bad_frames = false;
+  bool allow_unordered = false;
 };
 
 std::string Resolutions(const SessionSummary& s) {
@@ -50,6 +51,7 @@ void PrintSession(const SessionSummary& s) {
 int RunInfo(const InfoArgs& args) {
   DatasetReadOptions options;
   options.skip_bad_frames = args.skip_bad_frames;
+  options.allow_unordered = args.allow_unordered;
   if (args.skip_bad_frames) options.skip_log = std::make_shared<SkipLog>();
   const std::unique_ptr<DatasetReader> reader = OpenDataset(args.path, args.format, options);
   const std::vector<SessionInfo> sessions = reader->Sessions();
@@ -82,6 +84,8 @@ RunFn SetupDataset(CLI::App& command) {
       ->capture_default_str();
   info->add_flag("--skip-bad-frames", args->skip_bad_frames,
                  "Skip frames that cannot be read and report how many");
+  info->add_flag("--allow-unordered", args->allow_unordered,
+                 "Read rgb.txt/depth.txt as recorded: sort them, drop unmatched frames");
   return [args, info] {
     if (info->parsed()) return RunInfo(*args);
     return 1;

@@ -16,6 +16,7 @@
 #include "slam/datasets/dataset_factory.h"
 #include "slam/engine/record_io.h"
 #include "slam/engine/session_runs.h"
+#include "slam/io/output_safety.h"
 #include "slam/map/map_memory.h"
 #include "slam/map/map_store.h"
 
@@ -32,18 +33,19 @@ struct LocalizeArgs {
   std::string trajectory;
   std::string summary;
   int odometry_cache = -1;
+  bool allow_unordered = false;
 };
 
 void WriteRecords(const std::string& path, const std::vector<LocalizationRecord>& records) {
   std::vector<nlohmann::json> rows;
   for (const auto& r : records) rows.push_back(LocalizationRecordToJson(r));
-  std::ofstream out(path);
-  SLAM_THROW_IF_NOT(InputError, out.good()) << path << ": cannot write";
-  if (path.size() > 4 && path.substr(path.size() - 4) == ".csv") {
-    WriteCsv(out, rows);
-  } else {
-    WriteJsonLines(out, rows);
-  }
+  WriteFileAtomically(path, [&](std::ostream& out) {
+    if (path.size() > 4 && path.substr(path.size() - 4) == ".csv") {
+      WriteCsv(out, rows);
+    } else {
+      WriteJsonLines(out, rows);
+    }
+  });
 }
 
 nlohmann::json SummaryToJson(const std::string& session, const LocalizationRun& run,
@@ -94,14 +96,30 @@ void CheckSessionPaths(const LocalizeArgs& args) {
     SLAM_THROW_IF_NOT(ConfigError, seen.insert(s).second)
         << "localize: session '" << s << "' is given twice";
   }
-  if (args.sessions.size() < 2) return;
-  for (const auto& [flag, path] : {std::pair<const char*, const std::string&>{"--records", args.records},
-                                   {"--trajectory", args.trajectory},
-                                   {"--summary", args.summary}}) {
-    SLAM_THROW_IF_NOT(ConfigError, path.empty() || path.find("{session}") != std::string::npos)
-        << "localize: " << flag << " " << path
-        << ": with several sessions the path must contain {session}";
+  if (args.sessions.size() >= 2) {
+    for (const auto& [flag, path] :
+         {std::pair<const char*, const std::string&>{"--records", args.records},
+          {"--trajectory", args.trajectory},
+          {"--summary", args.summary}}) {
+      SLAM_THROW_IF_NOT(ConfigError, path.empty() || path.find("{session}") != std::string::npos)
+          << "localize: " << flag << " " << path
+          << ": with several sessions the path must contain {session}";
+    }
   }
+  SLAM_THROW_IF_NOT(ConfigError, args.odometry_cache >= -1 && args.odometry_cache <= 100000)
+      << "localize: --odometry-cache: must be in [0, 100000], got " << args.odometry_cache;
+  // Every output of every session, apart from the inputs and from each other.
+  std::vector<NamedPath> outputs;
+  for (const std::string& s : args.sessions) {
+    for (const auto& [flag, path] : {std::pair<const char*, const std::string&>{"--records", args.records},
+                                     {"--trajectory", args.trajectory},
+                                     {"--summary", args.summary}}) {
+      outputs.push_back({flag, SessionPath(path, s, args.sessions.size() > 1)});
+    }
+  }
+  CheckOutputsApartFromInputs(outputs, {{"--map", args.map},
+                                        {"--dataset", args.dataset},
+                                        {"--config", args.config}});
 }
 
 RunFn SetupLocalize(CLI::App& command) {
@@ -121,6 +139,8 @@ RunFn SetupLocalize(CLI::App& command) {
                      "corrected trajectory (TUM format); {session} as for --records");
   command.add_option("--summary", args->summary,
                      "write the summary as JSON here; {session} as for --records");
+  command.add_flag("--allow-unordered", args->allow_unordered,
+                   "read rgb.txt/depth.txt as recorded: sort them and drop unmatched frames (real TUM recordings)");
   command.add_option("--odometry-cache", args->odometry_cache,
                      "odometry-cache size (0 = paper-era rule; overrides the config)");
   return [args] {
@@ -133,9 +153,17 @@ RunFn SetupLocalize(CLI::App& command) {
     MapAndWords loaded = LoadMapAndWords(args->map, options.LocalizationMapLoad());
     const double map_load_s = load.ElapsedMs() / 1000.0;
     const Map& map = loaded.map;
-    if (args->config.empty()) options.features.type = map.metadata().feature_type;
+    // The map's feature type wins: its descriptors decide what can match.
+    if (!args->config.empty() && options.features.type != map.metadata().feature_type) {
+      std::cerr << "duskmap localize: note: " << args->config << ": features.type '"
+                << options.features.type << "' ignored; the map " << args->map
+                << " was built with '" << map.metadata().feature_type << "'\n";
+    }
+    options.features.type = map.metadata().feature_type;
     options.Check();
-    const auto dataset = OpenDataset(args->dataset, args->format);
+    DatasetReadOptions read;
+    read.allow_unordered = args->allow_unordered;
+    const auto dataset = OpenDataset(args->dataset, args->format, read);
     // Every session is opened before the first is localized: a wrong name
     // fails before any work.
     std::vector<std::unique_ptr<SessionReader>> readers;
@@ -163,9 +191,7 @@ RunFn SetupLocalize(CLI::App& command) {
       if (!trajectory.empty()) WriteCorrectedTrajectory(trajectory, run.records);
       nlohmann::json summary = SummaryToJson(name, run, i == 0 ? map_load_s : 0.0);
       if (!summary_path.empty()) {
-        std::ofstream out(summary_path);
-        SLAM_THROW_IF_NOT(InputError, out.good()) << summary_path << ": cannot write";
-        out << summary.dump(2) << '\n';
+        WriteFileAtomically(summary_path, [&](std::ostream& out) { out << summary.dump(2) << '\n'; });
       }
       summaries.push_back(std::move(summary));
     }

@@ -4,12 +4,14 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <set>
 
 #include "experiments/command_registry.h"
 #include "slam/core/check.h"
 #include "slam/datasets/dataset_factory.h"
 #include "slam/engine/record_io.h"
 #include "slam/engine/session_runs.h"
+#include "slam/io/output_safety.h"
 #include "slam/map/map_memory.h"
 #include "slam/map/map_store.h"
 
@@ -26,6 +28,8 @@ struct MapArgs {
   std::string summary;
   std::string frames;
   bool reduce = false;
+  bool overwrite = false;
+  bool allow_unordered = false;
 };
 
 nlohmann::json TimingsToJson(const std::map<std::string, StageTimingSummary>& timings) {
@@ -39,13 +43,34 @@ nlohmann::json TimingsToJson(const std::map<std::string, StageTimingSummary>& ti
 void WriteFrames(const std::string& path, const std::vector<MappingFrameResult>& frames) {
   std::vector<nlohmann::json> rows;
   for (const auto& f : frames) rows.push_back(MappingResultToJson(f));
-  std::ofstream out(path);
-  SLAM_THROW_IF_NOT(InputError, out.good()) << path << ": cannot write";
-  if (path.size() > 4 && path.substr(path.size() - 4) == ".csv") {
-    WriteCsv(out, rows);
-  } else {
-    WriteJsonLines(out, rows);
+  WriteFileAtomically(path, [&](std::ostream& out) {
+    if (path.size() > 4 && path.substr(path.size() - 4) == ".csv") {
+      WriteCsv(out, rows);
+    } else {
+      WriteJsonLines(out, rows);
+    }
+  });
+}
+
+// Before any work: the outputs are apart from the inputs and from each
+// other, an existing map is replaced only with --overwrite and only when it
+// is a duskmap map, the sessions are listed once and the feature is named.
+void CheckMapArgs(const MapArgs& args, bool feature_given) {
+  std::set<std::string> seen;
+  for (const std::string& s : args.sessions) {
+    SLAM_THROW_IF_NOT(ConfigError, !s.empty()) << "map: --sessions: empty session name";
+    SLAM_THROW_IF_NOT(ConfigError, seen.insert(s).second)
+        << "map: --sessions: session '" << s << "' is given twice";
   }
+  SLAM_THROW_IF_NOT(ConfigError, !feature_given || !args.feature.empty())
+      << "map: --feature: empty feature type";
+  CheckOutputsApartFromInputs(
+      {{"--output", args.output}, {"--summary", args.summary}, {"--frames", args.frames}},
+      {{"--dataset", args.dataset}, {"--config", args.config}});
+  CheckMayReplace({"--output", args.output}, args.overwrite,
+                  {"a duskmap map", [](const std::filesystem::path& p) {
+                     return IsDuskmapMapFile(p.string());
+                   }});
 }
 
 RunFn SetupMap(CLI::App& command) {
@@ -61,12 +86,19 @@ RunFn SetupMap(CLI::App& command) {
   command.add_option("--summary", args->summary, "write the map summary as JSON here");
   command.add_option("--frames", args->frames, "per-frame records (.jsonl or .csv)");
   command.add_flag("--reduce", args->reduce, "graph reduction (the paper's 1-2-3-4-5-6 maps)");
-  return [args] {
+  command.add_flag("--allow-unordered", args->allow_unordered,
+                   "read rgb.txt/depth.txt as recorded: sort them and drop unmatched frames (real TUM recordings)");
+  command.add_flag("--overwrite", args->overwrite, "replace an existing map file (only a duskmap map)");
+  CLI::Option* feature_option = command.get_option("--feature");
+  return [args, feature_option] {
+    CheckMapArgs(*args, feature_option->count() > 0);
     EngineOptions options = args->config.empty() ? EngineOptions() : ReadEngineOptionsFile(args->config);
     if (!args->feature.empty()) options.features.type = args->feature;
     if (args->reduce) options.mapping.reduce_graph = true;
     options.Check();
-    const auto dataset = OpenDataset(args->dataset, args->format);
+    DatasetReadOptions read;
+    read.allow_unordered = args->allow_unordered;
+    const auto dataset = OpenDataset(args->dataset, args->format, read);
     const MappingRun run = BuildMap(*dataset, args->sessions, options);
     SaveMap(run.map, args->output);
     nlohmann::json summary = MapSummaryToJson(SummarizeMap(run.map));
@@ -78,9 +110,7 @@ RunFn SetupMap(CLI::App& command) {
     summary["map_file"] = args->output;
     if (!args->frames.empty()) WriteFrames(args->frames, run.frames);
     if (!args->summary.empty()) {
-      std::ofstream out(args->summary);
-      SLAM_THROW_IF_NOT(InputError, out.good()) << args->summary << ": cannot write";
-      out << summary.dump(2) << '\n';
+      WriteFileAtomically(args->summary, [&](std::ostream& out) { out << summary.dump(2) << '\n'; });
     }
     std::cout << summary.dump(2) << '\n';
     return 0;

@@ -19,11 +19,15 @@
 #include "experiments/command_registry.h"
 #include "experiments/report_output.h"
 #include "slam/core/check.h"
+#include "slam/core/json_fields.h"
 #include "slam/datasets/dataset_factory.h"
+#include "slam/datasets/dataset_identity.h"
 #include "slam/engine/engine_options.h"
 #include "slam/experiment/engine_executor.h"
 #include "slam/experiment/job_runner.h"
 #include "slam/experiment/run_manifest.h"
+#include "slam/io/folder_commit.h"
+#include "slam/io/output_safety.h"
 
 namespace duskmap::cli {
 namespace fs = std::filesystem;
@@ -38,6 +42,7 @@ struct RunArgs {
   std::string shard = "0/1";
   bool report = true;
   bool figures = true;
+  bool allow_unordered = false;
 };
 
 std::pair<int, int> ParseShard(const std::string& text) {
@@ -83,19 +88,30 @@ std::map<std::string, int64_t> FramesPerJob(const ExperimentPlan& plan,
   return frames;
 }
 
+// A results folder is new, empty, or one `duskmap run` wrote (run.json):
+// a run never writes its jobs/ and report/ into a folder of other files.
 void CheckOutputFolder(const fs::path& output, const RunArgs& args, const RunManifest& manifest) {
-  if (!fs::exists(output / "run.json")) return;
+  std::error_code error;
+  if (!fs::exists(output, error)) return;
+  SLAM_THROW_IF_NOT(InputError, fs::is_directory(output, error))
+      << output.string() << ": exists and is not a folder; choose another --output";
+  if (!fs::exists(output / "run.json", error)) {
+    // (A run killed before it wrote run.json leaves only its lock file.)
+    bool empty = true;
+    for (const fs::directory_entry& entry : fs::directory_iterator(output, error)) {
+      if (entry.path().filename() != FolderLock::kFileName) empty = false;
+    }
+    SLAM_THROW_IF_NOT(InputError, empty && !error)
+        << output.string()
+        << ": not a duskmap results folder (no run.json) and not empty; choose a new or empty "
+           "--output";
+    return;
+  }
   SLAM_THROW_IF_NOT(ConfigError, args.resume || args.overwrite)
       << output.string()
       << ": holds an earlier run; pass --resume to continue it or --overwrite to redo every job";
   if (!args.resume) return;
-  const RunManifest earlier = ReadRunManifest(output);
-  SLAM_THROW_IF_NOT(ConfigError, earlier.features == manifest.features &&
-                                     earlier.session_clock == manifest.session_clock &&
-                                     earlier.shard_index == manifest.shard_index &&
-                                     earlier.shard_count == manifest.shard_count)
-      << (output / "run.json").string()
-      << ": an earlier run with other features, sessions or shard; cannot resume it";
+  CheckResumable(ReadRunManifest(output), manifest, output);
 }
 
 // Wall-clock times of this invocation (not deterministic, kept out of the
@@ -107,9 +123,15 @@ void WriteRunTiming(const JobRunSummary& summary, const fs::path& path) {
   json["resumed"] = summary.resumed;
   for (const auto& [kind, seconds] : summary.busy_s_by_kind) json["job_s_by_kind"][JobKindName(kind)] = seconds;
   json["job_s"] = summary.job_wall_s;
-  std::ofstream out(path);
-  out << json.dump(1) << "\n";
-  SLAM_THROW_IF_NOT(InputError, out.good()) << path.string() << ": cannot write";
+  WriteFileAtomically(path.string(), [&](std::ostream& out) { out << json.dump(1) << "\n"; });
+}
+
+// The dataset's identity and how it was read (both shape the results).
+nlohmann::json DatasetIdentityRead(const ExperimentOptions& options,
+                                   const std::vector<SessionInfo>& sessions, bool allow_unordered) {
+  nlohmann::json identity = DatasetIdentity(options.dataset_path, options.dataset_format, sessions);
+  identity["allow_unordered"] = allow_unordered;
+  return identity;
 }
 
 RunFn SetupRun(CLI::App& command) {
@@ -122,6 +144,8 @@ RunFn SetupRun(CLI::App& command) {
   command.add_flag("--overwrite", args->overwrite, "redo every job of an earlier run");
   command.add_option("--shard", args->shard,
                      "run shard i of n (i/n, 0-based); merge shards with `duskmap report`");
+  command.add_flag("--allow-unordered", args->allow_unordered,
+                   "read rgb.txt/depth.txt as recorded: sort them and drop unmatched frames (real TUM recordings)");
   command.add_flag("!--no-report", args->report, "do not write the report after the run");
   command.add_flag("!--no-figures", args->figures, "write the report's tables only");
   return [args] {
@@ -132,12 +156,25 @@ RunFn SetupRun(CLI::App& command) {
     const auto [shard_index, shard_count] = ParseShard(args->shard);
     const fs::path output =
         args->output.empty() ? fs::path("out") / fs::path(args->config).stem() : fs::path(args->output);
-    SLAM_THROW_IF_NOT(ConfigError, args->jobs >= 0) << "--jobs: must be >= 0";
+    SLAM_THROW_IF_NOT(ConfigError, args->jobs >= 0 && args->jobs <= 4096)
+        << "--jobs: must be in [0, 4096], got " << args->jobs;
     const int jobs = args->jobs > 0 ? args->jobs
                                     : std::max(1u, std::thread::hardware_concurrency());
 
-    const auto dataset = OpenDataset(options.dataset_path, options.dataset_format);
+    SLAM_THROW_IF_NOT(ConfigError, !(args->resume && args->overwrite))
+        << "--resume and --overwrite: give one (continue the earlier run, or redo it)";
+    CheckOutputsApartFromInputs({{"--output", output.string()}},
+                                {{"config", args->config},
+                                 {"engine_config", options.engine_config},
+                                 {"dataset.path", options.dataset_path}});
+    DatasetReadOptions read;
+    read.allow_unordered = args->allow_unordered;
+    const auto dataset = OpenDataset(options.dataset_path, options.dataset_format, read);
     const std::vector<SessionInfo> sessions = dataset->Sessions();
+    std::vector<std::string> session_names;
+    for (const SessionInfo& s : sessions) session_names.push_back(s.name);
+    // A session the dataset lacks fails here, before any job runs.
+    CheckSessionsExist(options, session_names, args->config);
     RunManifest manifest;
     manifest.config_path = args->config;
     manifest.dataset_path = options.dataset_path;
@@ -154,7 +191,15 @@ RunFn SetupRun(CLI::App& command) {
         << args->config << ": every feature type was skipped";
     const ExperimentPlan full_plan = PlanFromManifest(options, manifest);
     const ExperimentPlan plan = SelectShard(full_plan, shard_index, shard_count);
+    SetRunConfiguration(ReadJsonFile(args->config),
+                        options.engine_config.empty() ? nlohmann::json()
+                                                      : ReadJsonFile(options.engine_config),
+                        DatasetIdentityRead(options, sessions, args->allow_unordered),
+                        DUSKMAP_VERSION, &manifest);
     CheckOutputFolder(output, *args, manifest);
+    CreateFolder(output.string());
+    // Held until the process ends: a second run into this folder is refused.
+    const FolderLock lock(output);
     WriteRunManifest(manifest, output);
 
     // Parallelism comes from jobs; single-threaded OpenCV keeps per-frame

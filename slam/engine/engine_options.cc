@@ -1,5 +1,8 @@
 #include "slam/engine/engine_options.h"
 
+#include <cstring>
+#include <utility>
+
 #include <optional>
 
 #include "slam/core/check.h"
@@ -105,6 +108,29 @@ void ReadStorage(JsonFields& fields, const char* key, const char* field, Descrip
   *out = *storage;
 }
 
+// An option's Check() names the C++ struct that holds it
+// ("RegistrationOptions.guess_window_px: ..."); a config's reader wants the
+// JSON section it wrote ("registration.guess_window_px: ...").
+std::string JsonKeysOfOptionError(std::string message) {
+  static const std::pair<const char*, const char*> kSections[] = {
+      {"RegistrationOptions.", "registration."},
+      {"PnpRansacOptions.", "registration."},
+      {"NndrMatcherOptions.", "registration."},
+      {"GuidedMatchingOptions.", "registration."},
+      {"LoopClosureOptions.", "loop_closure."},
+      {"BayesFilterOptions.", "loop_closure."},
+      {"VocabularyOptions.", "loop_closure."},
+      {"DescriptorIndexOptions.", "loop_closure."},
+      {"ProximityOptions.", "proximity."},
+      {"PoseGraphOptimizerOptions.", "optimizer."},
+      {"OdometryCacheOptions.", "localization."},
+      {"EngineOptions.", ""}};
+  for (const auto& [cpp, json] : kSections) {
+    if (message.rfind(cpp, 0) == 0) return json + message.substr(std::strlen(cpp));
+  }
+  return message;
+}
+
 }  // namespace
 
 EngineOptions ReadEngineOptions(JsonFields& fields) {
@@ -160,7 +186,11 @@ EngineOptions ReadEngineOptions(JsonFields& fields) {
   fields.Read("binary_distance", &binary_distance);
   o.binary_distance = ParseBinaryDistance(binary_distance, "EngineOptions.binary_distance");
   fields.RejectUnknown();
-  o.Check();
+  try {
+    o.Check();
+  } catch (const ConfigError& e) {
+    SLAM_THROW(ConfigError) << fields.where() << ": " << JsonKeysOfOptionError(e.what());
+  }
   return o;
 }
 

@@ -55,4 +55,10 @@ struct ExperimentOptions {
 // against the config file's folder. Throws ConfigError("<file>...: <problem>").
 ExperimentOptions ReadExperimentOptions(const std::string& path);
 
+// Throws ConfigError("<where>: <key>: session 'Z' is not in the dataset ...")
+// when a map, localization session, consecutive pair or clock time names a
+// session the dataset lacks: checked before any job runs.
+void CheckSessionsExist(const ExperimentOptions& options,
+                        const std::vector<std::string>& dataset_sessions, const std::string& where);
+
 }  // namespace duskmap

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "slam/core/check.h"
+#include "slam/io/output_safety.h"
 
 namespace duskmap {
 namespace fs = std::filesystem;
@@ -399,9 +400,7 @@ std::string FileStem(const std::string& caption) {
 }
 
 void WriteText(const fs::path& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-  SLAM_THROW_IF_NOT(InputError, out.good()) << path.string() << ": cannot write";
+  WriteFileAtomically(path.string(), [&](std::ostream& out) { out << text; });
 }
 
 }  // namespace

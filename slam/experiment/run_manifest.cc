@@ -1,10 +1,13 @@
 #include "slam/experiment/run_manifest.h"
 
 #include <fstream>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
 #include "slam/core/check.h"
+#include "slam/core/checksum.h"
+#include "slam/io/output_safety.h"
 
 namespace duskmap {
 namespace fs = std::filesystem;
@@ -60,19 +63,13 @@ void WriteRunManifest(const RunManifest& m, const fs::path& results_dir) {
                                {"features", m.features},
                                {"skipped_features", skipped},
                                {"session_clock_min", m.session_clock},
-                               {"shard", {{"index", m.shard_index}, {"count", m.shard_count}}}};
+                               {"shard", {{"index", m.shard_index}, {"count", m.shard_count}}},
+                               {"configuration", m.configuration},
+                               {"configuration_checksum", m.configuration_checksum}};
   std::error_code error;
   fs::create_directories(results_dir, error);
-  const fs::path path = results_dir / kManifestFile;
-  const fs::path partial = path.string() + ".partial";
-  {
-    std::ofstream out(partial);
-    out << json.dump(2) << "\n";
-    SLAM_THROW_IF_NOT(InputError, out.good()) << partial.string() << ": cannot write";
-  }
-  fs::rename(partial, path, error);
-  SLAM_THROW_IF_NOT(InputError, !error) << path.string() << ": cannot write (" << error.message()
-                                        << ")";
+  WriteFileAtomically((results_dir / kManifestFile).string(),
+                      [&](std::ostream& out) { out << json.dump(2) << "\n"; });
 }
 
 RunManifest ReadRunManifest(const fs::path& results_dir) {
@@ -93,10 +90,75 @@ RunManifest ReadRunManifest(const fs::path& results_dir) {
     json.at("session_clock_min").get_to(m.session_clock);
     json.at("shard").at("index").get_to(m.shard_index);
     json.at("shard").at("count").get_to(m.shard_count);
+    // (Absent in the run.json of older duskmap versions: such a run cannot
+    // be resumed, only redone.)
+    if (json.contains("configuration")) m.configuration = json.at("configuration");
+    if (json.contains("configuration_checksum")) {
+      json.at("configuration_checksum").get_to(m.configuration_checksum);
+    }
   } catch (const nlohmann::json::exception& e) {
     SLAM_THROW(InputError) << path.string() << ": malformed run manifest (" << e.what() << ")";
   }
   return m;
+}
+
+void SetRunConfiguration(const nlohmann::json& experiment, const nlohmann::json& engine,
+                         const nlohmann::json& dataset_identity, const std::string& version,
+                         RunManifest* manifest) {
+  manifest->configuration = {{"experiment", experiment},
+                             {"engine", engine},
+                             {"dataset", dataset_identity},
+                             {"duskmap", version}};
+  const std::string text = manifest->configuration.dump();
+  manifest->configuration_checksum = Checksum64Hex(text.data(), text.size());
+}
+
+std::string FirstJsonDifference(const nlohmann::json& earlier, const nlohmann::json& now) {
+  const auto value = [](const nlohmann::json& j) {
+    std::string text = j.dump();
+    return text.size() > 60 ? text.substr(0, 57) + "..." : text;
+  };
+  if (earlier.is_object() && now.is_object()) {
+    std::set<std::string> keys;
+    for (auto it = earlier.begin(); it != earlier.end(); ++it) keys.insert(it.key());
+    for (auto it = now.begin(); it != now.end(); ++it) keys.insert(it.key());
+    for (const std::string& key : keys) {
+      if (!earlier.contains(key)) return key + " (absent earlier, now " + value(now.at(key)) + ")";
+      if (!now.contains(key)) return key + " (earlier " + value(earlier.at(key)) + ", now absent)";
+      const std::string inner = FirstJsonDifference(earlier.at(key), now.at(key));
+      if (!inner.empty()) return key + (inner[0] == '[' || inner[0] == ' ' ? "" : ".") + inner;
+    }
+    return "";
+  }
+  if (earlier.is_array() && now.is_array() && earlier.size() == now.size()) {
+    for (size_t i = 0; i < earlier.size(); ++i) {
+      const std::string inner = FirstJsonDifference(earlier[i], now[i]);
+      if (!inner.empty()) {
+        return "[" + std::to_string(i) + "]" + (inner[0] == '[' || inner[0] == ' ' ? "" : ".") + inner;
+      }
+    }
+    return "";
+  }
+  if (earlier == now) return "";
+  return " (earlier " + value(earlier) + ", now " + value(now) + ")";
+}
+
+void CheckResumable(const RunManifest& earlier, const RunManifest& now, const fs::path& results_dir) {
+  const std::string path = (results_dir / kManifestFile).string();
+  SLAM_THROW_IF_NOT(ConfigError, earlier.features == now.features &&
+                                     earlier.session_clock == now.session_clock &&
+                                     earlier.shard_index == now.shard_index &&
+                                     earlier.shard_count == now.shard_count)
+      << path << ": an earlier run with other features, sessions or shard; cannot resume it";
+  SLAM_THROW_IF_NOT(ConfigError, !earlier.configuration.is_null())
+      << path << ": written by an older duskmap without a configuration record; its results "
+                 "cannot be checked against this run's, so it cannot be resumed (--overwrite redoes it)";
+  if (earlier.configuration_checksum == now.configuration_checksum) return;
+  std::string difference = FirstJsonDifference(earlier.configuration, now.configuration);
+  if (difference.empty()) difference = "the recorded checksum";
+  if (difference[0] == ' ') difference = "the configuration" + difference;
+  SLAM_THROW(ConfigError) << path << ": the earlier run had another configuration, first at "
+                          << difference << "; resuming would mix results (--overwrite redoes it)";
 }
 
 ExperimentPlan PlanFromManifest(ExperimentOptions options, const RunManifest& manifest) {

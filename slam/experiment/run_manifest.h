@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "slam/experiment/experiment_config.h"
 #include "slam/experiment/job_plan.h"
 #include "slam/io/dataset_reader.h"
@@ -29,7 +31,30 @@ struct RunManifest {
   SessionClock session_clock;               // minutes since midnight, by session name
   int shard_index = 0;
   int shard_count = 1;
+  // Everything that shapes a result, for --resume: the experiment config and
+  // the engine config as parsed (RunConfiguration), the dataset's identity
+  // (DatasetIdentity) and the duskmap version; and its checksum.
+  nlohmann::json configuration;
+  std::string configuration_checksum;
 };
+
+// The `configuration` record of a run: {"experiment": <config JSON>,
+// "engine": <engine config JSON, or null for the paper defaults>,
+// "dataset": <identity>, "duskmap": <version>} and its checksum into
+// manifest->configuration_checksum.
+void SetRunConfiguration(const nlohmann::json& experiment, const nlohmann::json& engine,
+                         const nlohmann::json& dataset_identity, const std::string& version,
+                         RunManifest* manifest);
+
+// The first place where two JSON values differ, as "key.path (earlier X, now
+// Y)", or "" when they are equal. Object keys are compared in sorted order.
+std::string FirstJsonDifference(const nlohmann::json& earlier, const nlohmann::json& now);
+
+// Throws ConfigError naming run.json when `earlier` (the folder's manifest)
+// cannot be resumed by `now`: other features, sessions or shard, or another
+// configuration (the first differing key named), or no configuration record.
+void CheckResumable(const RunManifest& earlier, const RunManifest& now,
+                    const std::filesystem::path& results_dir);
 
 // Clock time of every dataset session that has one; `configured` (the
 // experiment config's session_clock_times) adds or overrides times by name.

@@ -107,15 +107,15 @@ void SiftOptions::Check() const {
   FEATURE_OPTION_CHECK(sigma > 0.0, "sift.sigma");
 }
 void OrbOptions::Check() const {
-  FEATURE_OPTION_CHECK(scale_factor > 1.0, "orb.scale_factor");
-  FEATURE_OPTION_CHECK(levels >= 1, "orb.levels");
-  FEATURE_OPTION_CHECK(edge_threshold >= 0, "orb.edge_threshold");
-  FEATURE_OPTION_CHECK(patch_size >= 2, "orb.patch_size");
-  FEATURE_OPTION_CHECK(fast_threshold >= 1, "orb.fast_threshold");
+  FEATURE_OPTION_CHECK(scale_factor > 1.0 && scale_factor <= 4.0, "orb.scale_factor");
+  FEATURE_OPTION_CHECK(levels >= 1 && levels <= 16, "orb.levels");
+  FEATURE_OPTION_CHECK(edge_threshold >= 0 && edge_threshold <= 256, "orb.edge_threshold");
+  FEATURE_OPTION_CHECK(patch_size >= 2 && patch_size <= 256, "orb.patch_size");
+  FEATURE_OPTION_CHECK(fast_threshold >= 1 && fast_threshold <= 255, "orb.fast_threshold");
 }
 void BriskOptions::Check() const {
-  FEATURE_OPTION_CHECK(threshold >= 1, "brisk.threshold");
-  FEATURE_OPTION_CHECK(octaves >= 0, "brisk.octaves");
+  FEATURE_OPTION_CHECK(threshold >= 1 && threshold <= 255, "brisk.threshold");
+  FEATURE_OPTION_CHECK(octaves >= 0 && octaves <= 8, "brisk.octaves");
   FEATURE_OPTION_CHECK(pattern_scale > 0.0, "brisk.pattern_scale");
 }
 void KazeOptions::Check() const {
@@ -157,9 +157,15 @@ void SuperPointOptions::Check() const {
 
 void FeatureOptions::Check() const {
   const auto& names = FeatureTypeNames();
-  SLAM_THROW_IF_NOT(ConfigError, std::find(names.begin(), names.end(), type) != names.end())
-      << "features.type: unknown feature type '" << type << "'";
-  FEATURE_OPTION_CHECK(max_features >= 1, "max_features");
+  if (std::find(names.begin(), names.end(), type) == names.end()) {
+    std::string known;
+    for (const std::string& name : names) known += (known.empty() ? "" : ", ") + name;
+    SLAM_THROW(ConfigError) << "features.type: unknown feature type '" << type
+                            << "' (known: " << known
+                            << "; experiment configs use the paper's column codes SU, SI, ... instead)";
+  }
+  // 100,000 features of a 640x480 frame are one every 3 pixels: past any use.
+  FEATURE_OPTION_CHECK(max_features >= 1 && max_features <= 100000, "max_features");
   FEATURE_OPTION_CHECK(vocabulary_features >= 1 && vocabulary_features <= max_features,
                        "vocabulary_features");
   FEATURE_OPTION_CHECK(max_depth_m >= 0.0, "max_depth_m");

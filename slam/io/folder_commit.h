@@ -5,15 +5,18 @@
 
 #include <string>
 
+#include "slam/io/output_safety.h"
+
 namespace duskmap {
 
 class StagedFolder {
  public:
-  // Checks that `final_path` may be written (absent, or present with
-  // overwrite) and creates the temporary sibling "<final>.tmp-<pid>". Throws
-  // InputError naming the path when it exists without overwrite or when the
-  // parent folder is not writable.
-  StagedFolder(const std::string& final_path, bool overwrite);
+  // Checks that `final_path` may be written and creates the temporary sibling
+  // "<final>.tmp-<pid>". An existing `final_path` may be replaced only with
+  // `overwrite` and only when `owner` recognises it (CheckMayReplace); the
+  // current folder and its parents are never replaced. Throws InputError
+  // naming the path otherwise, or when the parent folder is not writable.
+  StagedFolder(const std::string& final_path, bool overwrite, const OwnedOutput& owner);
   // Removes the temporary folder unless Commit() succeeded.
   ~StagedFolder();
   StagedFolder(const StagedFolder&) = delete;
@@ -21,13 +24,16 @@ class StagedFolder {
 
   const std::string& staging_path() const { return staging_path_; }
   const std::string& final_path() const { return final_path_; }
-  // Replaces final_path by the staging folder (rename in the same parent).
+  // Puts the staging folder in place of final_path. An old folder is first
+  // renamed aside ("<final>.old-<pid>"), then removed once the new one is in
+  // place; if the swap fails the old folder is put back.
   void Commit();
 
  private:
   std::string final_path_;
   std::string staging_path_;
   bool overwrite_ = false;
+  OwnedOutput owner_;
   bool committed_ = false;
 };
 

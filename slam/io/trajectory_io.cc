@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "slam/core/check.h"
+#include "slam/io/output_safety.h"
 
 namespace duskmap {
 
@@ -40,19 +41,17 @@ std::vector<TrajectoryPose> ReadTrajectory(const std::string& path) {
 
 void WriteTrajectory(const std::string& path, const std::vector<TrajectoryPose>& poses,
                      const std::string& header_comment) {
-  std::ofstream out(path);
-  SLAM_THROW_IF_NOT(InputError, out.good()) << path << ": cannot write trajectory file";
-  if (!header_comment.empty()) out << "# " << header_comment << "\n";
-  out << "# timestamp tx ty tz qx qy qz qw\n";
-  for (const TrajectoryPose& p : poses) {
-    const Eigen::Quaterniond& q = p.pose.rotation;
-    const Eigen::Vector3d& t = p.pose.translation;
-    out << std::fixed << std::setprecision(6) << p.timestamp_s << std::setprecision(9) << " "
-        << t.x() << " " << t.y() << " " << t.z() << " " << q.x() << " " << q.y() << " " << q.z()
-        << " " << q.w() << "\n";
-  }
-  out.flush();
-  SLAM_THROW_IF_NOT(InputError, out.good()) << path << ": write failed";
+  WriteFileAtomically(path, [&](std::ostream& out) {
+    if (!header_comment.empty()) out << "# " << header_comment << "\n";
+    out << "# timestamp tx ty tz qx qy qz qw\n";
+    for (const TrajectoryPose& p : poses) {
+      const Eigen::Quaterniond& q = p.pose.rotation;
+      const Eigen::Vector3d& t = p.pose.translation;
+      out << std::fixed << std::setprecision(6) << p.timestamp_s << std::setprecision(9) << " "
+          << t.x() << " " << t.y() << " " << t.z() << " " << q.x() << " " << q.y() << " "
+          << q.z() << " " << q.w() << "\n";
+    }
+  });
 }
 
 std::optional<Rigid3d> InterpolatePose(const std::vector<TrajectoryPose>& poses, double timestamp_s,

@@ -27,7 +27,10 @@ PinholeCamera CameraModelOptions::Intrinsics() const {
 void CameraModelOptions::Check() const {
   SLAM_THROW_IF_NOT(ConfigError, width >= 16 && width <= 4096) << "camera.width must be in [16, 4096], got " << width;
   SLAM_THROW_IF_NOT(ConfigError, height >= 16 && height <= 4096) << "camera.height must be in [16, 4096], got " << height;
-  SLAM_THROW_IF_NOT(ConfigError, fx > 0 && fy > 0) << "camera.fx and camera.fy must be > 0";
+  // A focal length beyond 100x the image size is a field of view under 0.6 degrees: a typo.
+  SLAM_THROW_IF_NOT(ConfigError, fx > 0 && fy > 0 && fx <= 100.0 * width && fy <= 100.0 * height)
+      << "camera.fx and camera.fy must be in (0, 100 x the image width/height], got " << fx
+      << " and " << fy;
   SLAM_THROW_IF_NOT(ConfigError, ae_target > 0.05 && ae_target < 0.95) << "camera.ae_target must be in (0.05, 0.95), got " << ae_target;
   SLAM_THROW_IF_NOT(ConfigError, ae_speed > 0 && ae_speed <= 1) << "camera.ae_speed must be in (0, 1], got " << ae_speed;
   SLAM_THROW_IF_NOT(ConfigError, min_exposure_s > 0 && max_exposure_s > min_exposure_s)

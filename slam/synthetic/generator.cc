@@ -110,7 +110,7 @@ double SessionStartTimestamp(const SessionSpec& session) {
 GenerateSummary GenerateDataset(const GeneratorConfig& config, const GenerateOptions& options) {
   config.Check();
   Stopwatch watch;
-  StagedFolder staged(options.output_path, options.overwrite);
+  StagedFolder staged(options.output_path, options.overwrite, OwnedDataset());
   ApartmentOptions scene_options = config.scene;
   scene_options.seed = DeriveSeed(config.seed, 1);
   const Scene scene = BuildApartment(scene_options);

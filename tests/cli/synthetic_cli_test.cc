@@ -90,7 +90,7 @@ TEST(GenerateCli, MalformedConfigNamesTheFile) {
   const Result r = RunDuskmap("generate --config " + path + " --output " + (root / "data").string());
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(CountLines(r.output), 1) << r.output;
-  EXPECT_NE(r.output.find(path + ": invalid JSON"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(path + ":1:10: invalid JSON ("), std::string::npos) << r.output;
 }
 
 TEST(GenerateCli, UnwritableOutputFolderFails) {

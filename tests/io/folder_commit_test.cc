@@ -25,7 +25,7 @@ TEST(StagedFolder, CommitRenamesIntoPlace) {
   const fs::path root = TempRoot("commit");
   const std::string final_path = (root / "out").string();
   {
-    StagedFolder staged(final_path, false);
+    StagedFolder staged(final_path, false, OwnedDataset());
     std::ofstream(staged.staging_path() + "/file.txt") << "x";
     EXPECT_FALSE(fs::exists(final_path));  // nothing visible before the commit
     staged.Commit();
@@ -38,7 +38,7 @@ TEST(StagedFolder, FailureBeforeCommitLeavesNothing) {
   const fs::path root = TempRoot("abort");
   const std::string final_path = (root / "out").string();
   try {
-    StagedFolder staged(final_path, false);
+    StagedFolder staged(final_path, false, OwnedDataset());
     std::ofstream(staged.staging_path() + "/half.txt") << "x";
     throw InputError("simulated failure");
   } catch (const InputError&) {
@@ -52,13 +52,14 @@ TEST(StagedFolder, ExistingFolderNeedsOverwrite) {
   const std::string final_path = (root / "out").string();
   fs::create_directories(final_path);
   std::ofstream(final_path + "/old.txt") << "old";
+  std::ofstream(final_path + "/manifest.json") << R"({"format": "duskmap-synthetic"})";
   try {
-    StagedFolder staged(final_path, false);
+    StagedFolder staged(final_path, false, OwnedDataset());
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("already exists"), std::string::npos);
   }
-  StagedFolder staged(final_path, true);
+  StagedFolder staged(final_path, true, OwnedDataset());
   std::ofstream(staged.staging_path() + "/new.txt") << "new";
   staged.Commit();
   EXPECT_FALSE(fs::exists(final_path + "/old.txt"));
@@ -69,14 +70,49 @@ TEST(StagedFolder, UnwritableParentThrows) {
   if (::geteuid() == 0) GTEST_SKIP() << "running as root: permissions are not enforced";
   const fs::path root = TempRoot("readonly");
   ::chmod(root.c_str(), 0555);
-  EXPECT_THROW(StagedFolder((root / "out").string(), false), InputError);
+  EXPECT_THROW(StagedFolder((root / "out").string(), false, OwnedDataset()), InputError);
   ::chmod(root.c_str(), 0755);
 }
 
 TEST(StagedFolder, ParentIsAFileThrows) {
   const fs::path root = TempRoot("file_parent");
   std::ofstream((root / "plain").string()) << "x";
-  EXPECT_THROW(StagedFolder((root / "plain" / "out").string(), false), InputError);
+  EXPECT_THROW(StagedFolder((root / "plain" / "out").string(), false, OwnedDataset()), InputError);
+}
+
+TEST(StagedFolder, OverwriteRefusesWhatDuskmapDidNotWrite) {
+  const fs::path root = TempRoot("foreign");
+  const std::string final_path = (root / "mine").string();
+  fs::create_directories(final_path);
+  std::ofstream(final_path + "/thesis.tex") << "years of work";
+  try {
+    StagedFolder staged(final_path, true, OwnedDataset());
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(final_path + ": not a duskmap dataset"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_TRUE(fs::exists(final_path + "/thesis.tex"));
+  EXPECT_EQ(std::distance(fs::directory_iterator(root), fs::directory_iterator()), 1);
+  // A plain file in the way is not replaced either.
+  const std::string file_path = (root / "notes.txt").string();
+  std::ofstream(file_path) << "notes";
+  EXPECT_THROW(StagedFolder(file_path, true, OwnedDataset()), InputError);
+  EXPECT_TRUE(fs::is_regular_file(file_path));
+}
+
+TEST(StagedFolder, NeverReplacesTheCurrentFolderOrItsParents) {
+  const fs::path root = TempRoot("cwd");
+  const fs::path inner = root / "work";
+  fs::create_directories(inner);
+  std::ofstream((root / "manifest.json").string()) << R"({"format": "duskmap-synthetic"})";
+  std::ofstream((inner / "manifest.json").string()) << R"({"format": "duskmap-synthetic"})";
+  const fs::path before = fs::current_path();
+  fs::current_path(inner);
+  EXPECT_THROW(StagedFolder(".", true, OwnedDataset()), InputError);
+  EXPECT_THROW(StagedFolder("..", true, OwnedDataset()), InputError);
+  fs::current_path(before);
+  EXPECT_TRUE(fs::exists(inner / "manifest.json"));
 }
 
 }  // namespace

@@ -100,7 +100,11 @@ TEST(GenerateDataset, ExistingDatasetNeedsOverwrite) {
   std::ofstream(options.output_path + "/keep.txt") << "x";
   EXPECT_THROW(GenerateDataset(testing::SmallConfig(1), options), InputError);
   EXPECT_TRUE(fs::exists(options.output_path + "/keep.txt"));
+  // --overwrite replaces only a dataset duskmap generated (its manifest).
   options.overwrite = true;
+  EXPECT_THROW(GenerateDataset(testing::SmallConfig(1), options), InputError);
+  EXPECT_TRUE(fs::exists(options.output_path + "/keep.txt"));
+  std::ofstream(options.output_path + "/manifest.json") << R"({"format": "duskmap-synthetic"})";
   GenerateDataset(testing::SmallConfig(1), options);
   EXPECT_FALSE(fs::exists(options.output_path + "/keep.txt"));
   EXPECT_TRUE(fs::exists(options.output_path + "/manifest.json"));
