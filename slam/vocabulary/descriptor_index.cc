@@ -1,18 +1,154 @@
 #include "slam/vocabulary/descriptor_index.h"
 
 #include <algorithm>
+#include <numeric>
 #include <unordered_map>
 
 #include <flann/flann.hpp>
 
 #include "slam/core/byte_buffer.h"
 #include "slam/core/check.h"
+#include "slam/core/random.h"
 #include "slam/vocabulary/kd_forest.h"
 
 namespace duskmap {
 namespace {
 
 constexpr int kNeighbours = 2;
+// Bucket keys probed per LSH table and query (multi-probe masks), at most.
+constexpr size_t kMaxLshProbes = 65536;
+
+// Keys within `level` flipped bits of a `bits`-bit key: sum of C(bits, l)
+// for l <= level, stopping once it passes `cap`.
+size_t LshProbeCount(int bits, int level, size_t cap) {
+  size_t total = 0, term = 1;  // term = C(bits, l)
+  for (int l = 0; l <= level && l <= bits; ++l) {
+    total += term;
+    if (total > cap) return total;
+    term = term * static_cast<size_t>(bits - l) / static_cast<size_t>(l + 1);
+  }
+  return total;
+}
+
+// Multi-probe LSH over binary rows (FLANN's method: each table hashes a row
+// to the bits it reads at `key_bits` random positions; a search probes the
+// buckets of every key within `multi_probe` flipped bits of the query's key
+// in every table and compares each word found by Hamming distance over the
+// whole row). Own code instead of FLANN's LshIndex, whose LshTable<uchar>
+// negates a 64-bit block as a signed integer when a key uses its top bit
+// (UB, lsh_table.h:419), reads rows in 8-byte blocks past the end of rows
+// that are not a multiple of 8 bytes, reads past its bit list when the key is
+// longer than the row, leaves the bytes after the last whole 8-byte block out
+// of its Hamming distance, and draws its bits with std::random_device. Here
+// the bits come from the seed, so the index is deterministic. Words enter
+// and leave the buckets at once: the tables never need a rebuild.
+class LshTables {
+ public:
+  LshTables(const DescriptorIndexOptions& options, int cols) : cols_(cols) {
+    const int row_bits = cols * 8;
+    const int key_bits = std::min(options.lsh_key_bits, row_bits);
+    Rng rng(DeriveSeed(options.seed, 0x4C5348));  // "LSH"
+    std::vector<int> positions(row_bits);
+    tables_.resize(options.lsh_tables);
+    for (Table& table : tables_) {
+      std::iota(positions.begin(), positions.end(), 0);
+      for (int i = 0; i < key_bits; ++i) {  // partial Fisher-Yates shuffle
+        const int j = i + static_cast<int>(rng() % static_cast<uint64_t>(row_bits - i));
+        std::swap(positions[i], positions[j]);
+      }
+      table.bits.assign(positions.begin(), positions.begin() + key_bits);
+      std::sort(table.bits.begin(), table.bits.end());
+    }
+    AddMasks(0, key_bits, options.lsh_multi_probe);
+  }
+
+  void Add(WordId word, const uint8_t* row) {
+    for (Table& table : tables_) table.buckets[Key(table, row)].push_back({word, row});
+  }
+  void Remove(WordId word, const uint8_t* row) {
+    for (Table& table : tables_) {
+      auto bucket = table.buckets.find(Key(table, row));
+      SLAM_CHECK(bucket != table.buckets.end());
+      std::vector<Entry>& entries = bucket->second;
+      auto it = std::find_if(entries.begin(), entries.end(),
+                             [word](const Entry& e) { return e.word == word; });
+      SLAM_CHECK(it != entries.end());
+      *it = entries.back();
+      entries.pop_back();
+      if (entries.empty()) table.buckets.erase(bucket);
+    }
+  }
+  // The two nearest words among the probed buckets, ties by word id.
+  void SearchTwo(const uint8_t* query, std::vector<WordNeighbour>* out) const {
+    WordNeighbour best[kNeighbours];
+    int count = 0;
+    auto closer = [](const WordNeighbour& a, const WordNeighbour& b) {
+      return a.distance < b.distance || (a.distance == b.distance && a.word < b.word);
+    };
+    for (const Table& table : tables_) {
+      const uint32_t key = Key(table, query);
+      for (const uint32_t mask : masks_) {
+        const auto bucket = table.buckets.find(key ^ mask);
+        if (bucket == table.buckets.end()) continue;
+        for (const Entry& e : bucket->second) {
+          if ((count > 0 && best[0].word == e.word) || (count > 1 && best[1].word == e.word)) {
+            continue;  // already held (found through another table or probe)
+          }
+          const WordNeighbour cand{e.word, DescriptorDistance(DescriptorKind::kBinary, query,
+                                                              e.row, cols_)};
+          if (count < kNeighbours) {
+            best[count++] = cand;
+            if (count == 2 && closer(best[1], best[0])) std::swap(best[0], best[1]);
+          } else if (closer(cand, best[1])) {
+            best[1] = cand;
+            if (closer(best[1], best[0])) std::swap(best[0], best[1]);
+          }
+        }
+      }
+    }
+    out->assign(best, best + count);
+  }
+  // Bucket entries and hash nodes (the rows belong to the caller).
+  size_t MemoryBytes() const {
+    size_t bytes = masks_.capacity() * sizeof(uint32_t);
+    for (const Table& table : tables_) {
+      bytes += table.bits.capacity() * sizeof(int) + table.buckets.bucket_count() * sizeof(void*);
+      for (const auto& bucket : table.buckets) {
+        bytes += bucket.second.capacity() * sizeof(Entry) + sizeof(bucket) + 2 * sizeof(void*);
+      }
+    }
+    return bytes;
+  }
+
+ private:
+  struct Entry {
+    WordId word;
+    const uint8_t* row;  // the caller's stored row, alive while the word is indexed
+  };
+  struct Table {
+    std::vector<int> bits;  // row bit positions, key bit i = row bit bits[i]
+    std::unordered_map<uint32_t, std::vector<Entry>> buckets;
+  };
+
+  static uint32_t Key(const Table& table, const uint8_t* row) {
+    uint32_t key = 0;
+    for (size_t i = 0; i < table.bits.size(); ++i) {
+      const int b = table.bits[i];
+      key |= static_cast<uint32_t>((row[b >> 3] >> (b & 7)) & 1u) << i;
+    }
+    return key;
+  }
+  // FLANN's fill_xor_mask: every key with at most `level` bits set below `lowest`.
+  void AddMasks(uint32_t mask, int lowest, int level) {
+    masks_.push_back(mask);
+    if (level == 0) return;
+    for (int i = lowest - 1; i >= 0; --i) AddMasks(mask | (uint32_t{1} << i), i, level - 1);
+  }
+
+  int cols_;
+  std::vector<Table> tables_;
+  std::vector<uint32_t> masks_;
+};
 
 // Type-erased FLANN index over row pointers owned by DescriptorIndex::Backend.
 class FlannHolder {
@@ -104,11 +240,19 @@ void DescriptorIndexOptions::Check() const {
   SLAM_THROW_IF_NOT(ConfigError, checks >= 1) << "DescriptorIndexOptions.checks must be >= 1, got " << checks;
   SLAM_THROW_IF_NOT(ConfigError, rebalancing_factor > 1.0)
       << "DescriptorIndexOptions.rebalancing_factor must be > 1, got " << rebalancing_factor;
-  SLAM_THROW_IF_NOT(ConfigError, lsh_tables >= 1) << "DescriptorIndexOptions.lsh_tables must be >= 1, got " << lsh_tables;
+  SLAM_THROW_IF_NOT(ConfigError, lsh_tables >= 1 && lsh_tables <= 256)
+      << "DescriptorIndexOptions.lsh_tables must be in [1, 256], got " << lsh_tables;
   SLAM_THROW_IF_NOT(ConfigError, lsh_key_bits >= 1 && lsh_key_bits <= 32)
       << "DescriptorIndexOptions.lsh_key_bits must be in [1, 32], got " << lsh_key_bits;
   SLAM_THROW_IF_NOT(ConfigError, lsh_multi_probe >= 0)
       << "DescriptorIndexOptions.lsh_multi_probe must be >= 0, got " << lsh_multi_probe;
+  if (lsh_key_bits >= 1 && lsh_key_bits <= 32) {
+    SLAM_THROW_IF_NOT(ConfigError,
+                      LshProbeCount(lsh_key_bits, lsh_multi_probe, kMaxLshProbes) <= kMaxLshProbes)
+        << "DescriptorIndexOptions.lsh_multi_probe " << lsh_multi_probe << " with "
+        << lsh_key_bits << "-bit keys probes more than " << kMaxLshProbes
+        << " buckets per table and query (lower lsh_multi_probe or lsh_key_bits)";
+  }
   SLAM_THROW_IF_NOT(ConfigError, hierarchical_branching >= 2)
       << "DescriptorIndexOptions.hierarchical_branching must be >= 2, got " << hierarchical_branching;
   SLAM_THROW_IF_NOT(ConfigError, hierarchical_trees >= 1)
@@ -123,8 +267,9 @@ void DescriptorIndexOptions::Check() const {
       << "DescriptorIndexOptions.hierarchical_leaf_size must be >= 1, got " << hierarchical_leaf_size;
 }
 
-// Owns the rows and the index over them: KdForest (KD-tree kinds), FLANN
-// (LSH, hierarchical: FLANN keeps pointers to the rows) or a linear scan.
+// Owns the rows and the index over them: KdForest (KD-tree kinds), LshTables
+// (LSH), FLANN (hierarchical: FLANN keeps pointers to the rows) or a linear
+// scan.
 class DescriptorIndex::Backend {
  public:
   Backend(const DescriptorIndexOptions& options, DescriptorKind kind, int cols)
@@ -143,6 +288,8 @@ class DescriptorIndex::Backend {
       o.seed = options.seed;
       o.binary_distance = options.binary_distance;
       forest_ = std::make_unique<KdForest>(o, format_, cols);
+    } else if (index_kind_ == IndexKind::kLsh) {
+      lsh_ = std::make_unique<LshTables>(options, cols);
     }
   }
 
@@ -189,6 +336,11 @@ class DescriptorIndex::Backend {
       row.slot = linear_words_.size();
       linear_words_.push_back(word);
       linear_rows_.insert(linear_rows_.end(), data, data + stored_bytes_);
+    } else if (lsh_) {
+      row.descriptor.reset(new uint8_t[stored_bytes_]);
+      std::copy(data, data + stored_bytes_, row.descriptor.get());
+      lsh_->Add(word, row.descriptor.get());
+      if (rows_.empty()) ++rebuilds_;  // a first build, as FLANN's kinds count it
     } else {
       row.descriptor.reset(new uint8_t[stored_bytes_]);
       std::copy(data, data + stored_bytes_, row.descriptor.get());
@@ -205,6 +357,11 @@ class DescriptorIndex::Backend {
     if (it == rows_.end()) return false;
     if (index_kind_ == IndexKind::kLinear) {
       RemoveLinear(it->second.slot);
+      rows_.erase(it);
+      return true;
+    }
+    if (lsh_) {
+      lsh_->Remove(word, it->second.descriptor.get());
       rows_.erase(it);
       return true;
     }
@@ -228,6 +385,8 @@ class DescriptorIndex::Backend {
         continue;
       } else if (index_kind_ == IndexKind::kLinear) {
         SearchLinear(query, &(*out)[q]);
+      } else if (lsh_) {
+        lsh_->SearchTwo(query, &(*out)[q]);
       } else {
         SearchFlann(query, &(*out)[q]);
       }
@@ -257,6 +416,10 @@ class DescriptorIndex::Backend {
       forest_->Rebuild();
       return;
     }
+    if (lsh_) {  // the tables are always up to date
+      if (!rows_.empty()) ++rebuilds_;
+      return;
+    }
     if (flann_ == nullptr) return;
     flann_->BuildNow();
     AfterBuild(rows_.size());
@@ -269,17 +432,11 @@ class DescriptorIndex::Backend {
     size_t bytes = n * (own_row + sizeof(Row) + 2 * sizeof(void*) + 16);  // + hash node, malloc
     bytes += flann_to_word_.capacity() * sizeof(WordId) + linear_rows_.capacity() +
              linear_words_.capacity() * sizeof(WordId);
+    if (lsh_) return bytes + lsh_->MemoryBytes();  // bucket entries: (word, row) per table
     // FLANN: a row pointer and an id per row, plus the structure itself.
     bytes += n * (sizeof(void*) + sizeof(size_t));
-    switch (index_kind_) {
-      case IndexKind::kLsh:  // one 4-byte index per row per table
-        bytes += n * options_.lsh_tables * sizeof(uint32_t);
-        break;
-      case IndexKind::kHierarchical:  // a (index, pointer) pair per row per tree
-        bytes += n * options_.hierarchical_trees * 16;
-        break;
-      default:
-        break;
+    if (index_kind_ == IndexKind::kHierarchical) {  // an (index, pointer) pair per row per tree
+      bytes += n * options_.hierarchical_trees * 16;
     }
     return bytes;
   }
@@ -311,11 +468,6 @@ class DescriptorIndex::Backend {
   std::unique_ptr<FlannHolder> CreateFlann(const void* first_row) const {
     const uint32_t seed = options_.seed;
     switch (index_kind_) {
-      case IndexKind::kLsh:
-        return std::make_unique<FlannHolderT<flann::Hamming<unsigned char>>>(
-            flann::LshIndexParams(options_.lsh_tables, options_.lsh_key_bits,
-                                  options_.lsh_multi_probe),
-            cols_, first_row, seed);
       case IndexKind::kHierarchical:
         return std::make_unique<FlannHolderT<flann::Hamming<unsigned char>>>(
             flann::HierarchicalClusteringIndexParams(options_.hierarchical_branching,
@@ -403,6 +555,7 @@ class DescriptorIndex::Backend {
   std::vector<uint8_t> linear_rows_;  // linear only: contiguous rows
   std::vector<WordId> linear_words_;
   std::unique_ptr<KdForest> forest_;  // kdtree / bit_kdtree
+  std::unique_ptr<LshTables> lsh_;    // lsh
 };
 
 DescriptorIndex::DescriptorIndex(const DescriptorIndexOptions& options, DescriptorKind kind,

@@ -22,8 +22,8 @@ enum class IndexKind {
                   // the reference's byte-to-bits KD-tree with L1, Kp/NNStrategy=1; with
                   // binary_distance byte_l1 over the bytes (one dimension per byte), L1 —
                   // its Kp/ByteToFloat
-  kLsh,           // binary only: FLANN multi-probe LSH (Kp/NNStrategy=2); NOT deterministic
-                  // (Debian's FLANN shuffles with std::random_device)
+  kLsh,           // binary only: multi-probe LSH (Kp/NNStrategy=2), FLANN's method in own
+                  // code (FLANN's LshTable overflows and over-reads), key bits drawn from `seed`
   kHierarchical,  // binary only: FLANN hierarchical clustering, Hamming; NOT deterministic
   kLinear,        // exact brute force (float or binary); for tests and small maps
 };
@@ -39,13 +39,16 @@ struct DescriptorIndexOptions {
   int kd_leaf_size = 4;           // rows per KD-tree leaf before it splits (FLANN: 1)
   int checks = 32;                // rows compared per search (reference KNN_CHECKS: 32)
   double rebalancing_factor = 2.0;  // rebuild when rows >= factor x rows at last build
-  int lsh_tables = 12;            // LSH hash tables (reference: 12)
-  int lsh_key_bits = 20;          // LSH key size, bits (reference: 20)
-  int lsh_multi_probe = 2;        // LSH multi-probe level (reference: 2)
+  int lsh_tables = 12;            // LSH hash tables, 1-256 (reference: 12)
+  int lsh_key_bits = 20;          // LSH key size, bits, 1-32, at most the row's (reference: 20)
+  int lsh_multi_probe = 2;        // LSH multi-probe level: probes keys with up to this many bits
+                                  // flipped, at most 65536 per table (reference: 2); LSH
+                                  // ignores `checks`
   int hierarchical_branching = 32;  // hierarchical clustering branching factor
   int hierarchical_trees = 4;       // hierarchical clustering trees
   int hierarchical_leaf_size = 100; // hierarchical clustering max leaf size, rows
-  uint32_t seed = 42;             // seeds the KD-trees' random choices (and srand for FLANN)
+  uint32_t seed = 42;             // seeds the KD-trees' and LSH keys' random choices (and srand
+                                  // for FLANN)
   // How float words are stored: as extracted, or 8-bit per element with a
   // per-row offset and step (kdtree and linear kinds; a quarter of the
   // bytes, distances against the quantized values). Binary words are exact.

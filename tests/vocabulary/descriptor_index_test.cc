@@ -1,6 +1,7 @@
 #include "slam/vocabulary/descriptor_index.h"
 
 #include <limits>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -93,6 +94,88 @@ TEST(DescriptorIndex, EveryKindFindsTheNoisyCopyAndForgetsRemovedWords) {
       }
     }
   }
+}
+
+// LSH over rows of any width: widths that are not a multiple of 8 bytes (61:
+// AKAZE) or narrower than the key (2 bytes < 20 key bits), and 32-bit keys
+// over an 8-byte row, where a key takes the top bit of a 64-bit block in
+// almost every one of the 32 tables. FLANN's LshTable (lsh_table.h:419)
+// negated that block as a signed integer (UBSan: negation overflow), read the
+// row in 8-byte blocks past its end (61 bytes) or the bit list past its end
+// (2 bytes), ignored the bytes past the last whole block in its Hamming
+// distance and shuffled with std::random_device. Every word must be found
+// again at distance 0, every distance must be the Hamming distance of the
+// whole row, and two indexes with the same seed must agree.
+TEST(DescriptorIndex, LshHashesRowsOfAnyWidthDeterministically) {
+  struct Case {
+    int cols;
+    int key_bits;
+    int tables;
+    int multi_probe;
+  };
+  for (const Case c : {Case{8, 32, 32, 1}, Case{61, 20, 12, 2}, Case{2, 20, 4, 2}}) {
+    SCOPED_TRACE("cols " + std::to_string(c.cols));
+    cv::Mat words(300, c.cols, CV_8U);
+    cv::RNG rng(static_cast<uint64_t>(c.cols));
+    rng.fill(words, cv::RNG::UNIFORM, 0, 256);
+    cv::Mat noisy = words.clone();
+    for (int i = 0; i < noisy.rows; ++i) {
+      for (int flip = 0; flip < 2; ++flip) {
+        const int bit = rng.uniform(0, c.cols * 8);
+        noisy.at<uint8_t>(i, bit / 8) ^= static_cast<uint8_t>(1u << (bit % 8));
+      }
+    }
+    DescriptorIndexOptions options;
+    options.binary_kind = IndexKind::kLsh;
+    options.lsh_key_bits = c.key_bits;
+    options.lsh_tables = c.tables;
+    options.lsh_multi_probe = c.multi_probe;
+    DescriptorIndex a(options, DescriptorKind::kBinary, c.cols);
+    DescriptorIndex b(options, DescriptorKind::kBinary, c.cols);
+    for (int i = 0; i < words.rows; ++i) {
+      a.Add(i + 1, words.ptr<uint8_t>(i));
+      b.Add(i + 1, words.ptr<uint8_t>(i));
+    }
+    auto hamming = [&](const cv::Mat& queries, int q, WordId w) {
+      return DescriptorDistance(DescriptorKind::kBinary, queries.ptr<uint8_t>(q),
+                                words.ptr<uint8_t>(w - 1), c.cols);
+    };
+    const auto self = Search(a, words);
+    for (int i = 0; i < words.rows; ++i) {
+      ASSERT_FALSE(self[i].empty()) << "word " << i + 1;
+      EXPECT_EQ(self[i][0].distance, 0.0f) << "word " << i + 1;
+      if (c.cols >= 8) {
+        EXPECT_EQ(self[i][0].word, i + 1);
+      }
+      for (const WordNeighbour& n : self[i]) EXPECT_EQ(n.distance, hamming(words, i, n.word));
+    }
+    const auto found_a = Search(a, noisy);
+    const auto found_b = Search(b, noisy);
+    int correct = 0;
+    for (int i = 0; i < noisy.rows; ++i) {
+      ASSERT_EQ(found_a[i].size(), found_b[i].size()) << "query " << i;
+      for (size_t k = 0; k < found_a[i].size(); ++k) {
+        EXPECT_EQ(found_a[i][k].word, found_b[i][k].word) << "query " << i;
+        EXPECT_EQ(found_a[i][k].distance, found_b[i][k].distance) << "query " << i;
+        EXPECT_EQ(found_a[i][k].distance, hamming(noisy, i, found_a[i][k].word));
+      }
+      correct += !found_a[i].empty() && found_a[i][0].word == i + 1;
+    }
+    if (c.cols >= 8) {
+      EXPECT_GE(correct, 290);
+    }
+  }
+  DescriptorIndexOptions too_many_probes;
+  too_many_probes.binary_kind = IndexKind::kLsh;
+  too_many_probes.lsh_multi_probe = 7;  // 137,980 keys of 20 bits within 7 flips
+  try {
+    too_many_probes.Check();
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("lsh_multi_probe"), std::string::npos) << e.what();
+  }
+  too_many_probes.lsh_multi_probe = 6;  // 60,460
+  EXPECT_NO_THROW(too_many_probes.Check());
 }
 
 // Compact (an imported vocabulary's index) frees the leaves' room for growth
