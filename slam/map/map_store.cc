@@ -217,7 +217,9 @@ void CheckFileHeader(const std::string& path) {
 void CheckIntegrity(SqliteDatabase& db) {
   SqliteStatement check = db.Prepare("PRAGMA quick_check");
   SLAM_THROW_IF_NOT(InputError, check.Step()) << db.path() << ": integrity check gave no result";
-  const std::string result = check.Text(0);
+  std::string result = check.Text(0);
+  // SQLite lists its findings on several lines: the error stays one line.
+  std::replace(result.begin(), result.end(), '\n', ' ');
   SLAM_THROW_IF_NOT(InputError, result == "ok")
       << db.path() << ": corrupted map file (" << result << ")";
 }
