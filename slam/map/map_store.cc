@@ -353,7 +353,20 @@ MapNode ReadNodeRow(const SqliteStatement& row, const MapMetadata& m, const std:
   SLAM_THROW_IF_NOT(InputError, n.word_counts.size() == n.word_ids.size())
       << what << ": " << n.word_counts.size() << " word counts for " << n.word_ids.size()
       << " words";
-  n.vocabulary_features = static_cast<int32_t>(row.Int(16));
+  const int64_t vocabulary_features = row.Int(16);
+  SLAM_THROW_IF_NOT(InputError, vocabulary_features >= 0 && vocabulary_features <= count)
+      << what << ": " << vocabulary_features << " vocabulary features of " << count;
+  n.vocabulary_features = static_cast<int32_t>(vocabulary_features);
+  // Each word occurs at least once among the quantized features, and no more
+  // often than they are (an importer expands the counts).
+  int64_t occurrences = 0;
+  for (const int32_t c : n.word_counts) {
+    SLAM_THROW_IF_NOT(InputError, c >= 1) << what << ": word count " << c;
+    occurrences += c;
+  }
+  SLAM_THROW_IF_NOT(InputError, occurrences <= vocabulary_features)
+      << what << ": word counts add up to " << occurrences << ", more than its "
+      << vocabulary_features << " vocabulary features";
   return n;
 }
 
@@ -444,7 +457,13 @@ MapWords ReadWords(SqliteDatabase& db, const MapMetadata& m, int64_t next_word_i
   int count = 0;
   while (select.Step()) {
     sum.Add(select, 2);
-    words.ids.push_back(static_cast<WordId>(select.Int(0)));
+    // Ids are positive, increasing (ORDER BY id) and fit a WordId: a larger
+    // id would wrap and break the order the readers of the words rely on.
+    const int64_t id = select.Int(0);
+    SLAM_THROW_IF_NOT(InputError, id > 0 && id <= std::numeric_limits<WordId>::max() &&
+                                      (words.ids.empty() || id > words.ids.back()))
+        << db.path() << ": word id " << id << " is out of range or order";
+    words.ids.push_back(static_cast<WordId>(id));
     size_t bytes = 0;
     const uint8_t* blob = select.BlobData(1, &bytes);
     SLAM_THROW_IF_NOT(InputError, bytes == row_bytes)
