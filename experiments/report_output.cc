@@ -73,7 +73,7 @@ int WriteExperimentReport(const ReportRequest& request) {
     SLAM_THROW_IF_NOT(ConfigError, difference.empty())
         << request.config_path << ": not the config of the run in "
         << (request.results_dirs.front() / "run.json").string() << " (first difference at "
-        << (difference[0] == ' ' ? "the top" + difference : difference) << ")";
+        << difference << ")";
   }
   for (const std::string& feature : manifest.features) {
     SLAM_THROW_IF_NOT(ConfigError, std::find(options.features.begin(), options.features.end(),

@@ -113,34 +113,46 @@ void SetRunConfiguration(const nlohmann::json& experiment, const nlohmann::json&
   manifest->configuration_checksum = Checksum64Hex(text.data(), text.size());
 }
 
-std::string FirstJsonDifference(const nlohmann::json& earlier, const nlohmann::json& now) {
-  const auto value = [](const nlohmann::json& j) {
-    std::string text = j.dump();
-    return text.size() > 60 ? text.substr(0, 57) + "..." : text;
-  };
+namespace {
+
+std::string ShortDump(const nlohmann::json& j) {
+  std::string text = j.dump();
+  return text.size() > 60 ? text.substr(0, 57) + "..." : text;
+}
+
+// `path` names where `earlier` and `now` sit ("" at the top).
+std::string DifferenceAt(const std::string& path, const nlohmann::json& earlier,
+                         const nlohmann::json& now) {
+  const auto join = [&path](const std::string& key) { return path.empty() ? key : path + "." + key; };
   if (earlier.is_object() && now.is_object()) {
     std::set<std::string> keys;
     for (auto it = earlier.begin(); it != earlier.end(); ++it) keys.insert(it.key());
     for (auto it = now.begin(); it != now.end(); ++it) keys.insert(it.key());
     for (const std::string& key : keys) {
-      if (!earlier.contains(key)) return key + " (absent earlier, now " + value(now.at(key)) + ")";
-      if (!now.contains(key)) return key + " (earlier " + value(earlier.at(key)) + ", now absent)";
-      const std::string inner = FirstJsonDifference(earlier.at(key), now.at(key));
-      if (!inner.empty()) return key + (inner[0] == '[' || inner[0] == ' ' ? "" : ".") + inner;
+      if (!earlier.contains(key)) return join(key) + " (absent earlier, now " + ShortDump(now.at(key)) + ")";
+      if (!now.contains(key)) return join(key) + " (earlier " + ShortDump(earlier.at(key)) + ", now absent)";
+      const std::string inner = DifferenceAt(join(key), earlier.at(key), now.at(key));
+      if (!inner.empty()) return inner;
     }
     return "";
   }
   if (earlier.is_array() && now.is_array() && earlier.size() == now.size()) {
     for (size_t i = 0; i < earlier.size(); ++i) {
-      const std::string inner = FirstJsonDifference(earlier[i], now[i]);
-      if (!inner.empty()) {
-        return "[" + std::to_string(i) + "]" + (inner[0] == '[' || inner[0] == ' ' ? "" : ".") + inner;
-      }
+      const std::string inner =
+          DifferenceAt(path + "[" + std::to_string(i) + "]", earlier[i], now[i]);
+      if (!inner.empty()) return inner;
     }
     return "";
   }
   if (earlier == now) return "";
-  return " (earlier " + value(earlier) + ", now " + value(now) + ")";
+  return (path.empty() ? std::string("the top level") : path) + " (earlier " + ShortDump(earlier) +
+         ", now " + ShortDump(now) + ")";
+}
+
+}  // namespace
+
+std::string FirstJsonDifference(const nlohmann::json& earlier, const nlohmann::json& now) {
+  return DifferenceAt("", earlier, now);
 }
 
 void CheckResumable(const RunManifest& earlier, const RunManifest& now, const fs::path& results_dir) {
@@ -156,7 +168,6 @@ void CheckResumable(const RunManifest& earlier, const RunManifest& now, const fs
   if (earlier.configuration_checksum == now.configuration_checksum) return;
   std::string difference = FirstJsonDifference(earlier.configuration, now.configuration);
   if (difference.empty()) difference = "the recorded checksum";
-  if (difference[0] == ' ') difference = "the configuration" + difference;
   SLAM_THROW(ConfigError) << path << ": the earlier run had another configuration, first at "
                           << difference << "; resuming would mix results (--overwrite redoes it)";
 }

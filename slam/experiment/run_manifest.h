@@ -46,8 +46,9 @@ void SetRunConfiguration(const nlohmann::json& experiment, const nlohmann::json&
                          const nlohmann::json& dataset_identity, const std::string& version,
                          RunManifest* manifest);
 
-// The first place where two JSON values differ, as "key.path (earlier X, now
-// Y)", or "" when they are equal. Object keys are compared in sorted order.
+// The first place where two JSON values differ, as "key.path[2].key (earlier
+// X, now Y)" ("the top level (...)" for two different non-containers), or ""
+// when they are equal. Object keys are compared in sorted order.
 std::string FirstJsonDifference(const nlohmann::json& earlier, const nlohmann::json& now);
 
 // Throws ConfigError naming run.json when `earlier` (the folder's manifest)

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "slam/core/check.h"
+#include "slam/io/synthetic_dataset.h"
 
 namespace duskmap {
 namespace fs = std::filesystem;
@@ -78,7 +79,9 @@ void CheckMayReplace(const NamedPath& output, bool overwrite, const OwnedOutput&
 bool IsDuskmapDatasetFolder(const fs::path& path) {
   std::error_code error;
   if (!fs::is_directory(path, error)) return false;
-  std::ifstream in(path / "manifest.json");
+  // Only the format field: a damaged manifest of a generated dataset is
+  // still the generator's to replace.
+  std::ifstream in(path / kManifestFileName);
   if (!in.good()) return false;
   const nlohmann::json json = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
   return json.is_object() && json.value("format", std::string()) == "duskmap-synthetic";

@@ -15,6 +15,32 @@ namespace duskmap {
 namespace {
 
 constexpr int kNeighbours = 2;
+
+// The two nearest words offered so far, ties broken by word id (the linear
+// and LSH searches).
+class NearestTwo {
+ public:
+  bool Holds(WordId word) const {
+    return (count_ > 0 && best_[0].word == word) || (count_ > 1 && best_[1].word == word);
+  }
+  void Offer(const WordNeighbour& candidate) {
+    if (count_ < kNeighbours) {
+      best_[count_++] = candidate;
+      if (count_ == 2 && Closer(best_[1], best_[0])) std::swap(best_[0], best_[1]);
+    } else if (Closer(candidate, best_[1])) {
+      best_[1] = candidate;
+      if (Closer(best_[1], best_[0])) std::swap(best_[0], best_[1]);
+    }
+  }
+  void AssignTo(std::vector<WordNeighbour>* out) const { out->assign(best_, best_ + count_); }
+
+ private:
+  static bool Closer(const WordNeighbour& a, const WordNeighbour& b) {
+    return a.distance < b.distance || (a.distance == b.distance && a.word < b.word);
+  }
+  WordNeighbour best_[kNeighbours];
+  int count_ = 0;
+};
 // Bucket keys probed per LSH table and query (multi-probe masks), at most.
 constexpr size_t kMaxLshProbes = 65536;
 
@@ -80,33 +106,20 @@ class LshTables {
   }
   // The two nearest words among the probed buckets, ties by word id.
   void SearchTwo(const uint8_t* query, std::vector<WordNeighbour>* out) const {
-    WordNeighbour best[kNeighbours];
-    int count = 0;
-    auto closer = [](const WordNeighbour& a, const WordNeighbour& b) {
-      return a.distance < b.distance || (a.distance == b.distance && a.word < b.word);
-    };
+    NearestTwo nearest;
     for (const Table& table : tables_) {
       const uint32_t key = Key(table, query);
       for (const uint32_t mask : masks_) {
         const auto bucket = table.buckets.find(key ^ mask);
         if (bucket == table.buckets.end()) continue;
         for (const Entry& e : bucket->second) {
-          if ((count > 0 && best[0].word == e.word) || (count > 1 && best[1].word == e.word)) {
-            continue;  // already held (found through another table or probe)
-          }
-          const WordNeighbour cand{e.word, DescriptorDistance(DescriptorKind::kBinary, query,
-                                                              e.row, cols_)};
-          if (count < kNeighbours) {
-            best[count++] = cand;
-            if (count == 2 && closer(best[1], best[0])) std::swap(best[0], best[1]);
-          } else if (closer(cand, best[1])) {
-            best[1] = cand;
-            if (closer(best[1], best[0])) std::swap(best[0], best[1]);
-          }
+          // Already held (found through another table or probe).
+          if (nearest.Holds(e.word)) continue;
+          nearest.Offer({e.word, DescriptorDistance(DescriptorKind::kBinary, query, e.row, cols_)});
         }
       }
     }
-    out->assign(best, best + count);
+    nearest.AssignTo(out);
   }
   // Bucket entries and hash nodes (the rows belong to the caller).
   size_t MemoryBytes() const {
@@ -497,24 +510,12 @@ class DescriptorIndex::Backend {
   }
 
   void SearchLinear(const uint8_t* query, std::vector<WordNeighbour>* out) const {
-    WordNeighbour best[kNeighbours];
-    int count = 0;
+    NearestTwo nearest;
     for (size_t s = 0; s < linear_words_.size(); ++s) {
-      const float d = WordDistance(format_, query, &linear_rows_[s * stored_bytes_], cols_,
-                                   options_.binary_distance);
-      const WordNeighbour cand{linear_words_[s], d};
-      auto closer = [](const WordNeighbour& a, const WordNeighbour& b) {
-        return a.distance < b.distance || (a.distance == b.distance && a.word < b.word);
-      };
-      if (count < kNeighbours) {
-        best[count++] = cand;
-        if (count == 2 && closer(best[1], best[0])) std::swap(best[0], best[1]);
-      } else if (closer(cand, best[1])) {
-        best[1] = cand;
-        if (closer(best[1], best[0])) std::swap(best[0], best[1]);
-      }
+      nearest.Offer({linear_words_[s], WordDistance(format_, query, &linear_rows_[s * stored_bytes_],
+                                                    cols_, options_.binary_distance)});
     }
-    out->assign(best, best + count);
+    nearest.AssignTo(out);
   }
 
   void RemoveLinear(size_t slot) {
