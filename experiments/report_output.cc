@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <iomanip>
 #include <iostream>
 #include <optional>
+#include <sstream>
 
 #include "slam/core/check.h"
 #include "slam/core/json_fields.h"
@@ -106,6 +108,26 @@ int WriteExperimentReport(const ReportRequest& request) {
               << results.missing_jobs.front() << "\n";
   }
   std::cout << "tables: " << (request.output_dir / "tables.md").string() << "\n";
+  if (report.agreement) {
+    const AgreementReport& agreement = *report.agreement;
+    const TableDeviation* single = agreement.FindDeviation(kDeviationSingleMaps);
+    const TableDeviation* multi = agreement.FindDeviation(kDeviationMultiMaps);
+    const auto number = [](const std::optional<double>& value, int decimals) {
+      std::ostringstream out;
+      if (value) {
+        out << std::fixed << std::setprecision(decimals) << *value;
+      } else {
+        out << "-";
+      }
+      return out.str();
+    };
+    std::cout << "agreement with the paper: single-session maps deviate by "
+              << number(single->mean_abs_deviation, 1) << " points, multi-session maps by "
+              << number(multi->mean_abs_deviation, 1) << " (held out), Spearman rho "
+              << number(agreement.ranking.spearman_rho, 2) << ", findings reproduced "
+              << agreement.FindingsReproduced() << "/" << agreement.FindingsDecided() << " ("
+              << (request.output_dir / "agreement.md").string() << ")\n";
+  }
   if (request.figures) {
     const fs::path script = fs::path(DUSKMAP_SOURCE_DIR) / "scripts" / "plot_report.py";
     std::string command = "/usr/bin/python3 " + ShellQuote(script.string()) + " " +

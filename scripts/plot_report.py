@@ -212,9 +212,15 @@ FIGURE_CAPTIONS = [
 def write_report_md(report_dir, title, figures):
     tables_path = os.path.join(report_dir, "tables.md")
     tables = open(tables_path).read() if os.path.exists(tables_path) else ""
+    agreement_path = os.path.join(report_dir, "agreement.md")
+    agreement = open(agreement_path).read() if os.path.exists(agreement_path) else ""
     lines = [f"# duskmap report{': ' + title if title else ''}", "",
-             "Each cell: measured (paper). Tables as CSV in tables/, LaTeX in tables.tex.", "",
-             "## Tables", "", tables, "## Figures", ""]
+             "Each cell: measured (paper). Tables as CSV in tables/, LaTeX in tables.tex.", ""]
+    if agreement:
+        lines += ["## Agreement with the paper", "",
+                  "As data in agreement.json; how each finding is decided: "
+                  "docs/experiments.md, \"Agreement with the paper\".", "", agreement]
+    lines += ["## Tables", "", tables, "## Figures", ""]
     for prefix, caption in FIGURE_CAPTIONS:
         mine = sorted(p for p in figures if os.path.basename(p).startswith(prefix))
         if not mine:

@@ -30,6 +30,16 @@ std::optional<double> PaperReference::Value(const std::vector<std::string>& keys
   return node->at(index).get<double>();
 }
 
+std::vector<std::string> PaperReference::Findings() const {
+  std::vector<std::string> findings;
+  const auto it = root_.find("qualitative_findings");
+  if (it == root_.end() || !it->is_array()) return findings;
+  for (const nlohmann::json& finding : *it) {
+    if (finding.is_string()) findings.push_back(finding.get<std::string>());
+  }
+  return findings;
+}
+
 void PaperReference::FillRows(const std::string& table_key, const std::string& metric_key,
                               ReportTable* table) const {
   for (const std::string& row : table->rows()) {

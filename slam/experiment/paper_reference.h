@@ -25,6 +25,10 @@ class PaperReference {
   std::optional<double> Value(const std::vector<std::string>& keys,
                               const std::string& column) const;
 
+  // The paper's qualitative findings (root["qualitative_findings"]), empty
+  // when the file lists none.
+  std::vector<std::string> Findings() const;
+
   // Fills the paper value of every cell of `table` whose row exists under
   // root[table_key][metric_key] (rows = table rows, columns = feature codes).
   void FillRows(const std::string& table_key, const std::string& metric_key,

@@ -1,11 +1,13 @@
 #include "slam/experiment/report_builder.h"
 
+#include <algorithm>
 #include <array>
 #include <fstream>
 #include <set>
 #include <sstream>
 
 #include "slam/core/check.h"
+#include "slam/experiment/report_table_ids.h"
 #include "slam/io/output_safety.h"
 
 namespace duskmap {
@@ -85,15 +87,20 @@ std::vector<ReportTable> RelocalizationTables(const ExperimentOptions& options,
     if (it != results.localization.end()) totals[{cell.row, cell.feature}].Add(it->second);
   }
   const std::string suffix = ", cumulative over the localization sessions";
-  ReportTable relocalized("Re-localization (% of frames)" + suffix, rows, options.features);
-  ReportTable inliers("Visual inliers (% of features, re-localized frames)" + suffix, rows,
+  ReportTable relocalized(kTableRelocalizationPct, "Re-localization (% of frames)" + suffix, rows,
+                          options.features);
+  ReportTable inliers(kTableInliersPct,
+                      "Visual inliers (% of features, re-localized frames)" + suffix, rows,
                       options.features);
-  ReportTable jumps("Average re-localization jump (mm)" + suffix, rows, options.features);
-  ReportTable correct("Correct re-localizations within 0.5 m/5° (% of frames)" + suffix, rows,
-                      options.features);
-  ReportTable wrong("Wrong re-localizations (count, beyond 0.5 m/5°)" + suffix, rows,
+  ReportTable jumps(kTableJumpsMm, "Average re-localization jump (mm)" + suffix, rows,
                     options.features);
-  ReportTable no_candidate("Frames with no candidate at all (%)" + suffix, rows, options.features);
+  ReportTable correct(kTableCorrectPct,
+                      "Correct re-localizations within 0.5 m/5° (% of frames)" + suffix, rows,
+                      options.features);
+  ReportTable wrong(kTableWrongCount, "Wrong re-localizations (count, beyond 0.5 m/5°)" + suffix,
+                    rows, options.features);
+  ReportTable no_candidate(kTableNoCandidatePct, "Frames with no candidate at all (%)" + suffix,
+                           rows, options.features);
   for (const auto& [key, t] : totals) {
     const auto& [row, feature] = key;
     if (t.frames == 0) continue;
@@ -131,7 +138,8 @@ std::vector<ReportTable> RelocalizationTables(const ExperimentOptions& options,
     std::vector<std::string> threshold_rows;
     for (const char* label : labels) threshold_rows.push_back(std::string("correct within ") + label + " (%)");
     for (const char* label : labels) threshold_rows.push_back(std::string("wrong beyond ") + label + " (count)");
-    ReportTable thresholds("Re-localizations against ground truth at three thresholds, every "
+    ReportTable thresholds(kTableGroundTruthThresholds,
+                           "Re-localizations against ground truth at three thresholds, every "
                            "localization job together",
                            threshold_rows, options.features, 1);
     for (const std::string& feature : options.features) {
@@ -169,16 +177,19 @@ std::vector<ReportTable> MapTables(const ExperimentOptions& options, const Exper
                                    const ExperimentResults& results,
                                    const std::optional<PaperReference>& paper) {
   const auto rows = MapRows(options, true);
-  ReportTable nodes("Graph size (nodes)", rows, options.features);
-  ReportTable memory("Memory needed for localization (MB)", rows, options.features, 1);
-  ReportTable per_node("Memory needed for localization per node (KiB); the paper's: RAM (its "
+  ReportTable nodes(kTableGraphNodes, "Graph size (nodes)", rows, options.features);
+  ReportTable memory(kTableMemoryMb, "Memory needed for localization (MB)", rows, options.features,
+                     1);
+  ReportTable per_node(kTableMemoryPerNodeKib,
+                       "Memory needed for localization per node (KiB); the paper's: RAM (its "
                        "constant overhead excluded) / nodes",
                        rows, options.features, 1);
   std::vector<std::string> ate_rows;
   for (const std::string& row : rows) {
     if (ParseMapSpec(row).kind != MapKind::kSingle) ate_rows.push_back(row);
   }
-  ReportTable ate("ATE of the merged maps against ground truth (mm)", ate_rows, options.features);
+  ReportTable ate(kTableAteMm, "ATE of the merged maps against ground truth (mm)", ate_rows,
+                  options.features);
   for (const std::string& feature : options.features) {
     for (const std::string& row : rows) {
       const auto it = results.maps.find("map/" + feature + "/" + row);
@@ -213,7 +224,8 @@ std::vector<ReportTable> MapTables(const ExperimentOptions& options, const Exper
   std::vector<ReportTable> tables = {nodes, memory, per_node, ate};
 
   if (HasRow(options, kReduced) && HasRow(options, kFullMerge)) {
-    ReportTable reduced("Graph reduction: nodes left in 1-2-3-4-5-6 and reduction (%)",
+    ReportTable reduced(kTableGraphReduction,
+                        "Graph reduction: nodes left in 1-2-3-4-5-6 and reduction (%)",
                         {"nodes", "reduction_pct"}, options.features);
     for (const std::string& feature : options.features) {
       const auto r = results.maps.find("map/" + feature + "/" + kReduced);
@@ -232,12 +244,20 @@ std::vector<ReportTable> MapTables(const ExperimentOptions& options, const Exper
 ReportTable TimingTable(const ExperimentOptions& options, const ExperimentPlan& plan,
                         const ExperimentResults& results,
                         const std::optional<PaperReference>& paper) {
-  const std::vector<std::string> rows = {
-      "feature_detection_ms", "lcd_single_session_ms", "lcd_1+2+3+4+5+6_ms",
-      "lcd_1-2-3-4-5-6_ms",   "te_ms",                 "features_per_frame",
-      "vocabulary_single_session_k", "vocabulary_1+2+3+4+5+6_k", "vocabulary_1-2-3-4-5-6_k",
-      "descriptor_bytes", "lcd_te_median_1+2+3+4+5+6_ms", "map_single_session_s"};
-  ReportTable table("Per-frame timings (localization, ms), features per frame, vocabulary "
+  const std::vector<std::string> rows = {kRowFeatureDetectionMs,
+                                         kRowLcdSingleSessionMs,
+                                         kRowLcdFullMergeMs,
+                                         "lcd_1-2-3-4-5-6_ms",
+                                         kRowTeMs,
+                                         kRowFeaturesPerFrame,
+                                         "vocabulary_single_session_k",
+                                         "vocabulary_1+2+3+4+5+6_k",
+                                         "vocabulary_1-2-3-4-5-6_k",
+                                         "descriptor_bytes",
+                                         "lcd_te_median_1+2+3+4+5+6_ms",
+                                         "map_single_session_s"};
+  ReportTable table(kTableTiming,
+                    "Per-frame timings (localization, ms), features per frame, vocabulary "
                     "(thousands of words), descriptor size (bytes), median LCD + TE per frame on "
                     "the six-session map (ms) and single-session map building from cached "
                     "features (s, wall)",
@@ -313,10 +333,12 @@ std::vector<ReportTable> ConsecutiveTables(const ExperimentOptions& options,
   if (plan.consecutive.empty()) return {};
   std::vector<std::string> rows;
   for (int gap : options.consecutive_gap_classes_min) rows.push_back(std::to_string(gap) + " min");
-  ReportTable max_gap("Consecutive sessions: largest distance travelled without "
+  ReportTable max_gap(kTableConsecutiveMaxGapM,
+                      "Consecutive sessions: largest distance travelled without "
                       "re-localization (m), worst pair of each gap class",
                       rows, options.features, 2);
-  ReportTable within("Consecutive sessions: frames re-localized within 55 cm of the previous "
+  ReportTable within(kTableConsecutiveWithin55cmPct,
+                     "Consecutive sessions: frames re-localized within 55 cm of the previous "
                      "re-localization (%)",
                      rows, options.features);
   std::map<std::pair<std::string, std::string>, std::pair<double, std::pair<int, int>>> acc;
@@ -352,6 +374,42 @@ std::vector<ReportTable> ConsecutiveTables(const ExperimentOptions& options,
   }
   *csv = out.str();
   return {max_gap, within};
+}
+
+SingleMapMatrix BuildSingleMapMatrix(const ExperimentOptions& options, const ExperimentPlan& plan,
+                                     const ExperimentResults& results) {
+  SingleMapMatrix matrix;
+  std::string closest_label;
+  for (const MapSpec& map : options.maps) {
+    if (map.kind == MapKind::kSingle) matrix.map_rows.push_back(map.label);
+    if (map.kind == MapKind::kClosestInTime) closest_label = map.label;
+  }
+  matrix.sessions = options.localization_sessions;
+  matrix.closest_row.assign(matrix.sessions.size(), "");
+  const auto index = [](const std::vector<std::string>& list, const std::string& value) {
+    return static_cast<size_t>(std::find(list.begin(), list.end(), value) - list.begin());
+  };
+  for (const MatrixCell& cell : plan.cells) {
+    const size_t s = index(matrix.sessions, cell.session);
+    if (s >= matrix.sessions.size()) continue;
+    if (!closest_label.empty() && cell.row == closest_label) {
+      if (const Job* job = plan.FindJob(cell.job_id)) matrix.closest_row[s] = job->map.label;
+      continue;
+    }
+    const size_t r = index(matrix.map_rows, cell.row);
+    const auto it = results.localization.find(cell.job_id);
+    if (r >= matrix.map_rows.size() || it == results.localization.end() ||
+        it->second.num_frames == 0) {
+      continue;
+    }
+    auto& pct = matrix.pct[cell.feature];
+    if (pct.empty()) {
+      pct.assign(matrix.map_rows.size(),
+                 std::vector<std::optional<double>>(matrix.sessions.size()));
+    }
+    pct[r][s] = 100.0 * it->second.num_relocalized / it->second.num_frames;
+  }
+  return matrix;
 }
 
 std::string CellsCsv(const ExperimentPlan& plan, const ExperimentResults& results) {
@@ -444,7 +502,8 @@ ReportTable TimingBudgetTable(const ExperimentOptions& options, const Experiment
       "map_load_1+2+3+4+5+6_s", "localizer_setup_s",  "index_restore_s",
       "index_restore_1+2+3+4+5+6_s", "index_rebuilt_jobs", "frames_s",
       "index_build_at_mapping_s", "index_build_1+2+3+4+5+6_s"};
-  ReportTable table("Timing budget of the localization jobs (s, wall; per job unless counted): "
+  ReportTable table(kTableTimingBudget,
+                    "Timing budget of the localization jobs (s, wall; per job unless counted): "
                     "map loads (one per map and worker, the other jobs share it), localizer "
                     "setup with the vocabulary index restored from the map (or rebuilt), the "
                     "frames' work from cached features, and the index built once per map at "
@@ -504,6 +563,8 @@ ExperimentReport BuildReport(const ExperimentOptions& options, const ExperimentP
   }
   report.cells_csv = CellsCsv(plan, results);
   report.timeline_csv = TimelineCsv(results);
+  report.single_maps = BuildSingleMapMatrix(options, plan, results);
+  if (paper) report.agreement = ComputeAgreement(report.tables, report.single_maps, *paper);
   return report;
 }
 
@@ -524,6 +585,14 @@ void WriteReport(const ExperimentReport& report, const fs::path& dir) {
   WriteText(dir / "cells.csv", report.cells_csv);
   WriteText(dir / "timeline.csv", report.timeline_csv);
   if (!report.consecutive_csv.empty()) WriteText(dir / "consecutive.csv", report.consecutive_csv);
+  if (report.agreement) {
+    WriteText(dir / "agreement.md", AgreementToMarkdown(*report.agreement));
+    WriteText(dir / "agreement.json", AgreementToJson(*report.agreement).dump(2) + "\n");
+  } else {
+    // An earlier report's agreement would describe other tables.
+    fs::remove(dir / "agreement.md", error);
+    fs::remove(dir / "agreement.json", error);
+  }
 }
 
 }  // namespace duskmap

@@ -8,11 +8,13 @@
 #include <string>
 #include <vector>
 
+#include "slam/experiment/agreement.h"
 #include "slam/experiment/experiment_config.h"
 #include "slam/experiment/job_plan.h"
 #include "slam/experiment/job_results.h"
 #include "slam/experiment/paper_reference.h"
 #include "slam/experiment/report_table.h"
+#include "slam/experiment/session_matrix.h"
 
 namespace duskmap {
 
@@ -36,14 +38,18 @@ struct ExperimentReport {
   // One line per frame of each localization job, for the over-time figure.
   std::string timeline_csv;
   std::string consecutive_csv;
+  SingleMapMatrix single_maps;
+  // How far the tables agree with the paper; only with the paper's numbers.
+  std::optional<AgreementReport> agreement;
 };
 
 ExperimentReport BuildReport(const ExperimentOptions& options, const ExperimentPlan& plan,
                              const ExperimentResults& results,
                              const std::optional<PaperReference>& paper);
 
-// Writes report.md, tables.tex, one CSV per table and the figure data into
-// `dir` (created when absent).
+// Writes tables.md, tables.tex, one CSV per table, the figure data and, with
+// the paper's numbers, agreement.md and agreement.json into `dir` (created
+// when absent); scripts/plot_report.py puts them together in report.md.
 void WriteReport(const ExperimentReport& report, const std::filesystem::path& dir);
 
 }  // namespace duskmap

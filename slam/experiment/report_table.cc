@@ -32,13 +32,22 @@ std::string EscapeLatex(const std::string& text) {
 
 }  // namespace
 
-ReportTable::ReportTable(std::string caption, std::vector<std::string> rows,
+ReportTable::ReportTable(std::string id, std::string caption, std::vector<std::string> rows,
                          std::vector<std::string> columns, int decimals)
-    : caption_(std::move(caption)),
+    : id_(std::move(id)),
+      caption_(std::move(caption)),
       rows_(std::move(rows)),
       columns_(std::move(columns)),
       decimals_(decimals),
       cells_(rows_.size() * columns_.size()) {}
+
+bool ReportTable::HasRow(const std::string& row) const {
+  return std::find(rows_.begin(), rows_.end(), row) != rows_.end();
+}
+
+bool ReportTable::HasColumn(const std::string& column) const {
+  return std::find(columns_.begin(), columns_.end(), column) != columns_.end();
+}
 
 size_t ReportTable::RowIndex(const std::string& row) const {
   const auto it = std::find(rows_.begin(), rows_.end(), row);

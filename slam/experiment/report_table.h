@@ -16,14 +16,19 @@ struct TableCell {
 
 class ReportTable {
  public:
-  ReportTable(std::string caption, std::vector<std::string> rows,
+  // `id` names the table for code that reads it back (report_table_ids.h);
+  // `caption` is what readers see.
+  ReportTable(std::string id, std::string caption, std::vector<std::string> rows,
               std::vector<std::string> columns, int decimals = 0);
 
   void SetMeasured(const std::string& row, const std::string& column, double value);
   void SetPaper(const std::string& row, const std::string& column, double value);
   const TableCell& At(const std::string& row, const std::string& column) const;
 
+  const std::string& id() const { return id_; }
   const std::string& caption() const { return caption_; }
+  bool HasRow(const std::string& row) const;
+  bool HasColumn(const std::string& column) const;
   const std::vector<std::string>& rows() const { return rows_; }
   const std::vector<std::string>& columns() const { return columns_; }
 
@@ -39,6 +44,7 @@ class ReportTable {
   size_t ColumnIndex(const std::string& column) const;
   std::string FormatCell(const TableCell& cell, bool latex) const;
 
+  std::string id_;
   std::string caption_;
   std::vector<std::string> rows_;
   std::vector<std::string> columns_;

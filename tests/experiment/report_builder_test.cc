@@ -119,11 +119,34 @@ TEST(BuildReport, AggregatesCellsOverSessionsBesideThePaper) {
   }
   EXPECT_TRUE(per_node_found);
 
+  // The single-map matrix behind the diagonal finding: map 1 on F is job
+  // localize/SI/1/F; the closest-in-time row used map 1 for A and 6 for F.
+  EXPECT_EQ(report.single_maps.map_rows, (std::vector<std::string>{"1", "6"}));
+  EXPECT_EQ(report.single_maps.closest_row, (std::vector<std::string>{"1", "6"}));
+  EXPECT_DOUBLE_EQ(*report.single_maps.pct.at("SI")[0][1], 1.0 * f.num_relocalized);
+  ASSERT_TRUE(report.agreement.has_value());
+  const TableDeviation* single = report.agreement->FindDeviation(kDeviationSingleMaps);
+  ASSERT_NE(single, nullptr);
+  EXPECT_EQ(single->cells, 2);  // SI on maps 1 and 6; OR has no paper value
+  EXPECT_NEAR(*single->mean_abs_deviation,
+              (std::abs(*relocalized.At("1", "SI").measured - 65.0) +
+               std::abs(*relocalized.At("6", "SI").measured - 75.0)) / 2.0,
+              1e-9);
+  EXPECT_EQ(report.agreement->findings.size(), paper.Findings().size());
+
   const fs::path out = dir / "report";
   WriteReport(report, out);
   EXPECT_TRUE(fs::exists(out / "tables.md"));
   EXPECT_TRUE(fs::exists(out / "tables.tex"));
   EXPECT_TRUE(fs::exists(out / "cells.csv"));
+  EXPECT_TRUE(fs::exists(out / "agreement.md"));
+  EXPECT_TRUE(fs::exists(out / "agreement.json"));
+  // Rewritten without the paper's numbers, the earlier agreement goes: it
+  // would describe other tables.
+  WriteReport(BuildReport(options, plan, results, std::nullopt), out);
+  EXPECT_TRUE(fs::exists(out / "tables.md"));
+  EXPECT_FALSE(fs::exists(out / "agreement.md"));
+  EXPECT_FALSE(fs::exists(out / "agreement.json"));
 }
 
 TEST(BuildReport, MergedShardsEqualOneUnshardedRun) {

@@ -8,7 +8,7 @@ namespace duskmap {
 namespace {
 
 TEST(ReportTable, WritesMeasuredBesidePaper) {
-  ReportTable table("Re-localization (%)", {"1", "1|2"}, {"SU", "SI"});
+  ReportTable table("relocalization_pct", "Re-localization (%)", {"1", "1|2"}, {"SU", "SI"});
   table.SetMeasured("1", "SU", 71.4);
   table.SetPaper("1", "SU", 68);
   table.SetMeasured("1|2", "SI", 90);
@@ -30,7 +30,7 @@ TEST(PaperReference, LooksUpPaperTables) {
             std::nullopt);  // the paper did not run ORB
   EXPECT_EQ(paper.Value({"no_such_table"}, "SU"), std::nullopt);
 
-  ReportTable table("Re-localization (%)", {"1", "1+6"}, {"SU", "OR"});
+  ReportTable table("relocalization_pct", "Re-localization (%)", {"1", "1+6"}, {"SU", "OR"});
   paper.FillRows("table_cumulative_relocalization", "relocalization_pct", &table);
   EXPECT_EQ(table.At("1", "SU").paper, 68.0);
   EXPECT_FALSE(table.At("1", "OR").paper.has_value());

@@ -1,0 +1,287 @@
+#include "slam/experiment/agreement.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <numeric>
+#include <sstream>
+
+#include "slam/experiment/report_cells.h"
+#include "slam/experiment/report_table_ids.h"
+
+namespace duskmap {
+namespace {
+
+TableDeviation Deviation(const std::string& name, const std::string& unit, AgreementRole role,
+                         const ReportTable* table,
+                         const std::function<bool(const std::string&)>& row_filter, int decimals) {
+  TableDeviation deviation;
+  deviation.name = name;
+  deviation.unit = unit;
+  deviation.role = role;
+  if (table == nullptr) return deviation;
+  double sum = 0.0;
+  for (const std::string& row : table->rows()) {
+    if (!row_filter(row)) continue;
+    for (const std::string& column : table->columns()) {
+      const TableCell& cell = table->At(row, column);
+      if (!cell.measured || !cell.paper) continue;
+      const double difference = std::abs(*cell.measured - *cell.paper);
+      sum += difference;
+      ++deviation.cells;
+      if (!deviation.max_abs_deviation || difference > *deviation.max_abs_deviation) {
+        deviation.max_abs_deviation = difference;
+        deviation.worst_cell = column + " on " + row + ": " +
+                               FormatFixed(*cell.measured, decimals) + " (paper " +
+                               FormatFixed(*cell.paper, decimals) + ")";
+      }
+    }
+  }
+  if (deviation.cells > 0) deviation.mean_abs_deviation = sum / deviation.cells;
+  return deviation;
+}
+
+std::vector<double> AverageRanks(const std::vector<double>& values) {
+  std::vector<size_t> order(values.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return values[a] < values[b]; });
+  std::vector<double> ranks(values.size());
+  for (size_t i = 0; i < order.size();) {
+    size_t j = i;
+    while (j + 1 < order.size() && values[order[j + 1]] == values[order[i]]) ++j;
+    const double rank = 0.5 * (i + j) + 1.0;
+    for (size_t k = i; k <= j; ++k) ranks[order[k]] = rank;
+    i = j + 1;
+  }
+  return ranks;
+}
+
+// The mean over `rows` of a feature's cells on one side; nullopt when any is missing.
+RankAgreement Ranking(const ReportTable* relocalization) {
+  RankAgreement ranking;
+  const std::vector<std::string> rows = SingleSessionRows(relocalization);
+  for (const std::string& feature : PaperColumns(relocalization)) {
+    const auto measured = RowMean(relocalization, rows, feature, TableSide::kMeasured);
+    const auto paper = RowMean(relocalization, rows, feature, TableSide::kPaper);
+    if (!measured || !paper) continue;
+    ranking.features.push_back(feature);
+    ranking.measured_mean_pct.push_back(*measured);
+    ranking.paper_mean_pct.push_back(*paper);
+  }
+  ranking.spearman_rho = SpearmanRho(ranking.measured_mean_pct, ranking.paper_mean_pct);
+  return ranking;
+}
+
+NightMinusDay NightDay(const ReportTable* relocalization, const RankAgreement& ranking) {
+  NightMinusDay result;
+  const std::vector<std::string> rows = SingleSessionRows(relocalization);
+  if (rows.size() < 2 || ranking.features.empty()) return result;
+  result.day_row = rows.front();
+  result.night_row = rows.back();
+  for (TableSide side : {TableSide::kMeasured, TableSide::kPaper}) {
+    double sum = 0.0;
+    int count = 0;
+    for (const std::string& feature : ranking.features) {
+      const auto night = CellValue(relocalization, result.night_row, feature, side);
+      const auto day = CellValue(relocalization, result.day_row, feature, side);
+      if (!night || !day) continue;
+      sum += *night - *day;
+      ++count;
+    }
+    if (count == 0) continue;
+    (side == TableSide::kMeasured ? result.measured_pts : result.paper_pts) = sum / count;
+  }
+  return result;
+}
+
+std::vector<FeatureRatio> FeatureRatios(const ReportTable* timing) {
+  std::vector<FeatureRatio> ratios;
+  if (timing == nullptr || !timing->HasRow(kRowFeaturesPerFrame)) return ratios;
+  for (const std::string& feature : timing->columns()) {
+    const TableCell& cell = timing->At(kRowFeaturesPerFrame, feature);
+    if (!cell.measured || !cell.paper || *cell.paper <= 0.0) continue;
+    ratios.push_back({feature, *cell.measured, *cell.paper, *cell.measured / *cell.paper});
+  }
+  return ratios;
+}
+
+std::string OptionalNumber(const std::optional<double>& value, int decimals) {
+  return value ? FormatFixed(*value, decimals) : "–";
+}
+
+nlohmann::json OptionalJson(const std::optional<double>& value) {
+  return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
+}
+
+}  // namespace
+
+const char* AgreementRoleName(AgreementRole role) {
+  return role == AgreementRole::kCalibration ? "calibration" : "held out";
+}
+
+int AgreementReport::FindingsReproduced() const {
+  return static_cast<int>(std::count_if(
+      findings.begin(), findings.end(),
+      [](const FindingCheck& f) { return f.verdict == FindingVerdict::kReproduced; }));
+}
+
+int AgreementReport::FindingsDecided() const {
+  return static_cast<int>(std::count_if(
+      findings.begin(), findings.end(),
+      [](const FindingCheck& f) { return f.verdict != FindingVerdict::kNotDecided; }));
+}
+
+const TableDeviation* AgreementReport::FindDeviation(const std::string& name) const {
+  for (const TableDeviation& deviation : deviations) {
+    if (deviation.name == name) return &deviation;
+  }
+  return nullptr;
+}
+
+std::optional<double> SpearmanRho(const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() != b.size() || a.size() < 3) return std::nullopt;
+  const std::vector<double> ra = AverageRanks(a);
+  const std::vector<double> rb = AverageRanks(b);
+  const double n = static_cast<double>(a.size());
+  const double mean = (n + 1.0) / 2.0;
+  double covariance = 0.0, variance_a = 0.0, variance_b = 0.0;
+  for (size_t i = 0; i < ra.size(); ++i) {
+    covariance += (ra[i] - mean) * (rb[i] - mean);
+    variance_a += (ra[i] - mean) * (ra[i] - mean);
+    variance_b += (rb[i] - mean) * (rb[i] - mean);
+  }
+  if (variance_a <= 0.0 || variance_b <= 0.0) return std::nullopt;
+  return covariance / std::sqrt(variance_a * variance_b);
+}
+
+AgreementReport ComputeAgreement(const std::vector<ReportTable>& tables,
+                                 const SingleMapMatrix& single_maps, const PaperReference& paper) {
+  const ReportTable* relocalization = FindTable(tables, kTableRelocalizationPct);
+  const ReportTable* max_gap = FindTable(tables, kTableConsecutiveMaxGapM);
+  AgreementReport agreement;
+  const auto all = [](const std::string&) { return true; };
+  agreement.deviations.push_back(Deviation(kDeviationSingleMaps, "points",
+                                           AgreementRole::kCalibration, relocalization,
+                                           IsSingleSessionRow, 0));
+  agreement.deviations.push_back(Deviation(
+      kDeviationMultiMaps, "points", AgreementRole::kHeldOut, relocalization,
+      [](const std::string& row) { return !IsSingleSessionRow(row); }, 0));
+  agreement.deviations.push_back(Deviation(kDeviationInliers, "points", AgreementRole::kHeldOut,
+                                           FindTable(tables, kTableInliersPct), all, 0));
+  agreement.deviations.push_back(Deviation(kDeviationJumps, "mm", AgreementRole::kHeldOut,
+                                           FindTable(tables, kTableJumpsMm), all, 0));
+  const ReportTable* within = FindTable(tables, kTableConsecutiveWithin55cmPct);
+  if (within != nullptr) {
+    for (const std::string& row : within->rows()) {
+      agreement.deviations.push_back(Deviation(
+          "consecutive " + row + ": within 55 cm", "points", AgreementRole::kHeldOut, within,
+          [&](const std::string& r) { return r == row; }, 0));
+    }
+  }
+  if (max_gap != nullptr) {
+    for (const std::string& row : max_gap->rows()) {
+      agreement.deviations.push_back(Deviation(
+          "consecutive " + row + ": largest gap", "m", AgreementRole::kHeldOut, max_gap,
+          [&](const std::string& r) { return r == row; }, 2));
+    }
+  }
+  agreement.ranking = Ranking(relocalization);
+  agreement.night_minus_day = NightDay(relocalization, agreement.ranking);
+  agreement.features_per_frame = FeatureRatios(FindTable(tables, kTableTiming));
+  agreement.findings = CheckPaperFindings(tables, single_maps, paper.Findings());
+  return agreement;
+}
+
+std::string AgreementToMarkdown(const AgreementReport& agreement) {
+  std::ostringstream out;
+  out << "**Mean absolute deviation from the paper** (cells with both values; calibration = "
+         "what the synthetic dataset may be tuned on, held out = never tuned on)\n\n"
+      << "| table | unit | cells | mean abs. deviation | largest (cell) | role |\n"
+      << "| --- | --- | ---: | ---: | --- | --- |\n";
+  for (const TableDeviation& d : agreement.deviations) {
+    const int decimals = d.unit == "m" ? 2 : 1;
+    out << "| " << d.name << " | " << d.unit << " | " << d.cells << " | "
+        << OptionalNumber(d.mean_abs_deviation, decimals) << " | "
+        << (d.max_abs_deviation
+                ? FormatFixed(*d.max_abs_deviation, decimals) + " (" + d.worst_cell + ")"
+                : "–")
+        << " | " << AgreementRoleName(d.role) << " |\n";
+  }
+  const RankAgreement& r = agreement.ranking;
+  out << "\n**Features ranked by mean single-session-map re-localization**: Spearman ρ = "
+      << OptionalNumber(r.spearman_rho, 2) << " over " << r.features.size() << " features";
+  if (!r.features.empty()) {
+    out << " (measured / paper, %:";
+    for (size_t i = 0; i < r.features.size(); ++i) {
+      out << " " << r.features[i] << " " << FormatFixed(r.measured_mean_pct[i], 1) << "/"
+          << FormatFixed(r.paper_mean_pct[i], 1);
+    }
+    out << ")";
+  }
+  out << "\n\n";
+  const NightMinusDay& n = agreement.night_minus_day;
+  if (!n.night_row.empty()) {
+    out << "**Night map minus day map** (map " << n.night_row << " − map " << n.day_row
+        << ", cumulative re-localization, mean over the ranked features): "
+        << (n.measured_pts ? FormatSigned(*n.measured_pts, 1) : "–") << " points (paper "
+        << (n.paper_pts ? FormatSigned(*n.paper_pts, 1) : "–") << ")\n\n";
+  }
+  if (!agreement.features_per_frame.empty()) {
+    out << "**Features per frame, measured / paper**:";
+    for (const FeatureRatio& f : agreement.features_per_frame) {
+      out << " " << f.feature << " " << FormatFixed(f.ratio, 2) << " ("
+          << FormatFixed(f.measured, 0) << "/" << FormatFixed(f.paper, 0) << ")";
+    }
+    out << "\n\n";
+  }
+  out << "**The paper's findings**: " << agreement.FindingsReproduced() << " of "
+      << agreement.FindingsDecided() << " decided reproduced\n\n"
+      << "| finding | rule | measured | verdict | the rule on the paper's numbers |\n"
+      << "| --- | --- | --- | --- | --- |\n";
+  for (const FindingCheck& f : agreement.findings) {
+    out << "| " << f.finding << " | " << (f.criterion.empty() ? "–" : f.criterion) << " | "
+        << f.measured << " | " << FindingVerdictName(f.verdict) << " | " << f.paper << " |\n";
+  }
+  return out.str();
+}
+
+nlohmann::json AgreementToJson(const AgreementReport& agreement) {
+  nlohmann::json json;
+  json["deviations"] = nlohmann::json::array();
+  for (const TableDeviation& d : agreement.deviations) {
+    json["deviations"].push_back({{"name", d.name},
+                                  {"unit", d.unit},
+                                  {"role", AgreementRoleName(d.role)},
+                                  {"cells", d.cells},
+                                  {"mean_abs_deviation", OptionalJson(d.mean_abs_deviation)},
+                                  {"max_abs_deviation", OptionalJson(d.max_abs_deviation)},
+                                  {"worst_cell", d.worst_cell}});
+  }
+  json["ranking"] = {{"features", agreement.ranking.features},
+                     {"measured_mean_pct", agreement.ranking.measured_mean_pct},
+                     {"paper_mean_pct", agreement.ranking.paper_mean_pct},
+                     {"spearman_rho", OptionalJson(agreement.ranking.spearman_rho)}};
+  const NightMinusDay& n = agreement.night_minus_day;
+  json["night_minus_day"] = {{"night_row", n.night_row},
+                             {"day_row", n.day_row},
+                             {"measured_pts", OptionalJson(n.measured_pts)},
+                             {"paper_pts", OptionalJson(n.paper_pts)}};
+  json["features_per_frame"] = nlohmann::json::array();
+  for (const FeatureRatio& f : agreement.features_per_frame) {
+    json["features_per_frame"].push_back(
+        {{"feature", f.feature}, {"measured", f.measured}, {"paper", f.paper}, {"ratio", f.ratio}});
+  }
+  json["findings"] = nlohmann::json::array();
+  for (const FindingCheck& f : agreement.findings) {
+    json["findings"].push_back({{"finding", f.finding},
+                                {"criterion", f.criterion},
+                                {"verdict", FindingVerdictName(f.verdict)},
+                                {"measured", f.measured},
+                                {"paper", f.paper}});
+  }
+  json["findings_reproduced"] = agreement.FindingsReproduced();
+  json["findings_decided"] = agreement.FindingsDecided();
+  return json;
+}
+
+}  // namespace duskmap

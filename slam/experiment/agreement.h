@@ -1,0 +1,94 @@
+// How far a report agrees with the paper (issue 18, "agreement section"):
+// the mean absolute deviation of each table from the paper's values, the rank
+// correlation of the features' ordering, features per frame as a ratio of the
+// paper's, the night-minus-day difference, and each of the paper's
+// qualitative findings that a number decides, reproduced or not. Computed
+// from the report's tables alone, so a run on the paper's released data gets
+// the same section.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "slam/experiment/paper_findings.h"
+#include "slam/experiment/paper_reference.h"
+#include "slam/experiment/report_table.h"
+#include "slam/experiment/session_matrix.h"
+
+namespace duskmap {
+
+// Whether a number may be tuned on when calibrating the synthetic dataset
+// (issue 18: the single-session maps and features per frame only).
+enum class AgreementRole { kCalibration, kHeldOut };
+const char* AgreementRoleName(AgreementRole role);
+
+// Cells of one table (or part of one) that have both a measured and a paper
+// value, and how far apart they are.
+struct TableDeviation {
+  std::string name;  // e.g. "re-localization, single-session maps"
+  std::string unit;  // "points", "mm", "m"
+  AgreementRole role = AgreementRole::kHeldOut;
+  int cells = 0;
+  std::optional<double> mean_abs_deviation;
+  std::optional<double> max_abs_deviation;
+  std::string worst_cell;  // "KA on 6: 22 (paper 72)"
+};
+
+struct FeatureRatio {
+  std::string feature;
+  double measured = 0.0;
+  double paper = 0.0;
+  double ratio = 0.0;  // measured / paper
+};
+
+// The features ordered by their mean single-session-map re-localization.
+struct RankAgreement {
+  std::vector<std::string> features;  // those with both values in every single-session row
+  std::vector<double> measured_mean_pct;
+  std::vector<double> paper_mean_pct;
+  std::optional<double> spearman_rho;  // nullopt below 3 features
+};
+
+// The latest single-session map minus the earliest, cumulative re-localization
+// averaged over the ranked features (the paper: map 6 - map 1 = +8.8 points).
+struct NightMinusDay {
+  std::string night_row;
+  std::string day_row;
+  std::optional<double> measured_pts;
+  std::optional<double> paper_pts;
+};
+
+struct AgreementReport {
+  std::vector<TableDeviation> deviations;
+  RankAgreement ranking;
+  NightMinusDay night_minus_day;
+  std::vector<FeatureRatio> features_per_frame;
+  std::vector<FindingCheck> findings;
+
+  int FindingsReproduced() const;
+  int FindingsDecided() const;
+  const TableDeviation* FindDeviation(const std::string& name) const;
+};
+
+// Names of the deviation entries always computed (others: one per
+// consecutive-session gap class, "consecutive <class>: ...").
+inline constexpr char kDeviationSingleMaps[] = "re-localization, single-session maps";
+inline constexpr char kDeviationMultiMaps[] = "re-localization, multi-session maps";
+inline constexpr char kDeviationInliers[] = "visual inliers";
+inline constexpr char kDeviationJumps[] = "re-localization jumps";
+
+// `tables` as BuildReport makes them (found by ReportTable::id; absent tables
+// leave their entries empty); `single_maps` for the diagonal finding.
+AgreementReport ComputeAgreement(const std::vector<ReportTable>& tables,
+                                 const SingleMapMatrix& single_maps, const PaperReference& paper);
+
+// Spearman's rank correlation (average ranks for ties); nullopt when the
+// sizes differ, below 3 values, or a side is constant.
+std::optional<double> SpearmanRho(const std::vector<double>& a, const std::vector<double>& b);
+
+std::string AgreementToMarkdown(const AgreementReport& agreement);
+nlohmann::json AgreementToJson(const AgreementReport& agreement);
+
+}  // namespace duskmap

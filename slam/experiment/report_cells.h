@@ -1,0 +1,39 @@
+// Reading a built report's tables back (by ReportTable::id): a cell's
+// measured or paper value, which rows are single-session maps, which columns
+// the paper reports. Shared by the agreement section and the paper's findings.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "slam/experiment/map_spec.h"
+#include "slam/experiment/report_table.h"
+
+namespace duskmap {
+
+enum class TableSide { kMeasured, kPaper };
+
+// nullptr when no table has that id.
+const ReportTable* FindTable(const std::vector<ReportTable>& tables, const std::string& id);
+
+// nullopt when the table is null, lacks the row or column, or the cell the side.
+std::optional<double> CellValue(const ReportTable* table, const std::string& row,
+                                const std::string& column, TableSide side);
+
+// The row's map spec, nullopt for a row that is no map label ("30 min").
+std::optional<MapSpec> RowMapSpec(const std::string& row);
+bool IsSingleSessionRow(const std::string& row);
+std::vector<std::string> SingleSessionRows(const ReportTable* table);
+
+// Columns with at least one paper value.
+std::vector<std::string> PaperColumns(const ReportTable* table);
+
+// The mean of a column over `rows` on one side; nullopt when any is missing.
+std::optional<double> RowMean(const ReportTable* table, const std::vector<std::string>& rows,
+                              const std::string& column, TableSide side);
+
+std::string FormatFixed(double value, int decimals);
+std::string FormatSigned(double value, int decimals);  // "+1.5", "-0.3"
+
+}  // namespace duskmap

@@ -1,0 +1,183 @@
+#include "slam/experiment/agreement.h"
+
+#include <gtest/gtest.h>
+
+#include "slam/experiment/report_table_ids.h"
+
+namespace duskmap {
+namespace {
+
+const std::vector<std::string> kRows = {"1", "2", "3", "1+2+3", "1-2-3", "1|2|3"};
+const std::vector<std::string> kFeatures = {"SU", "SI", "BK", "OR"};
+
+// A hand-made re-localization table: measured = paper + a known offset.
+// Paper values per feature (rows 1, 2, 3, 1+2+3, 1-2-3, 1|2|3).
+ReportTable Relocalization() {
+  ReportTable table(kTableRelocalizationPct, "Re-localization (%)", kRows, kFeatures);
+  const std::map<std::string, std::vector<double>> paper = {{"SU", {70, 80, 75, 95, 90, 92}},
+                                                            {"SI", {65, 75, 72, 93, 88, 90}},
+                                                            {"BK", {60, 68, 66, 90, 85, 86}}};
+  // Single maps: SU -10 on each, SI +5, BK -2 (MAD 17/3 over 9 cells);
+  // multi-session: all 0 except SU 1|2|3 -6.
+  const std::map<std::string, std::vector<double>> measured = {{"SU", {60, 70, 65, 95, 90, 86}},
+                                                               {"SI", {70, 80, 77, 93, 88, 90}},
+                                                               {"BK", {58, 66, 64, 90, 85, 86}}};
+  for (const auto& [feature, values] : paper) {
+    for (size_t i = 0; i < kRows.size(); ++i) {
+      table.SetPaper(kRows[i], feature, values[i]);
+      table.SetMeasured(kRows[i], feature, measured.at(feature)[i]);
+    }
+  }
+  for (const std::string& row : kRows) table.SetMeasured(row, "OR", 50);  // no paper value
+  return table;
+}
+
+PaperReference Paper(std::vector<std::string> findings) {
+  return PaperReference(nlohmann::json{{"qualitative_findings", findings}});
+}
+
+SingleMapMatrix Matrix(bool diagonal_best) {
+  SingleMapMatrix matrix;
+  matrix.map_rows = {"1", "2", "3"};
+  matrix.sessions = {"A", "B", "C"};
+  matrix.closest_row = {"1", "2", "3"};
+  for (const char* feature : {"SU", "SI", "BK"}) {
+    auto& pct = matrix.pct[feature];
+    pct.assign(3, std::vector<std::optional<double>>(3));
+    for (int r = 0; r < 3; ++r) {
+      for (int s = 0; s < 3; ++s) pct[r][s] = 80.0 - 20.0 * std::abs(r - s);
+    }
+    if (!diagonal_best) pct[1][1] = 10.0;  // map 2 worst on its own session
+  }
+  return matrix;
+}
+
+TEST(SpearmanRho, MatchesHandComputedValues) {
+  EXPECT_NEAR(*SpearmanRho({1, 2, 3, 4}, {1, 3, 2, 4}), 0.8, 1e-12);
+  EXPECT_NEAR(*SpearmanRho({10, 20, 30}, {3, 2, 1}), -1.0, 1e-12);
+  // Ties take average ranks: (1.5, 1.5, 3) against (1, 2, 3).
+  EXPECT_NEAR(*SpearmanRho({1, 1, 2}, {1, 2, 3}), 1.5 / std::sqrt(3.0), 1e-12);
+  EXPECT_FALSE(SpearmanRho({1, 2}, {1, 2}).has_value());
+  EXPECT_FALSE(SpearmanRho({1, 1, 1}, {1, 2, 3}).has_value());
+  EXPECT_FALSE(SpearmanRho({1, 2, 3}, {1, 2}).has_value());
+}
+
+TEST(ComputeAgreement, DeviationPerTablePartAndRole) {
+  const AgreementReport agreement = ComputeAgreement({Relocalization()}, Matrix(true), Paper({}));
+  const TableDeviation* single = agreement.FindDeviation(kDeviationSingleMaps);
+  ASSERT_NE(single, nullptr);
+  EXPECT_EQ(single->cells, 9);  // OR has no paper value
+  EXPECT_NEAR(*single->mean_abs_deviation, (3 * 10 + 3 * 5 + 3 * 2) / 9.0, 1e-12);
+  EXPECT_DOUBLE_EQ(*single->max_abs_deviation, 10.0);
+  EXPECT_EQ(single->worst_cell, "SU on 1: 60 (paper 70)");
+  EXPECT_EQ(single->role, AgreementRole::kCalibration);
+  const TableDeviation* multi = agreement.FindDeviation(kDeviationMultiMaps);
+  ASSERT_NE(multi, nullptr);
+  EXPECT_EQ(multi->cells, 9);
+  EXPECT_NEAR(*multi->mean_abs_deviation, 6.0 / 9.0, 1e-12);
+  EXPECT_EQ(multi->role, AgreementRole::kHeldOut);
+  // Tables the report lacks leave their entries empty, not zero.
+  const TableDeviation* inliers = agreement.FindDeviation(kDeviationInliers);
+  ASSERT_NE(inliers, nullptr);
+  EXPECT_EQ(inliers->cells, 0);
+  EXPECT_FALSE(inliers->mean_abs_deviation.has_value());
+}
+
+TEST(ComputeAgreement, RankingAndNightMinusDay) {
+  const AgreementReport agreement = ComputeAgreement({Relocalization()}, Matrix(true), Paper({}));
+  const RankAgreement& ranking = agreement.ranking;
+  ASSERT_EQ(ranking.features, (std::vector<std::string>{"SU", "SI", "BK"}));
+  EXPECT_NEAR(ranking.measured_mean_pct[0], 65.0, 1e-12);
+  EXPECT_NEAR(ranking.paper_mean_pct[0], 75.0, 1e-12);
+  // Measured order SI > SU > BK, the paper's SU > SI > BK: rho = 1 - 6*2/24.
+  EXPECT_NEAR(*ranking.spearman_rho, 0.5, 1e-12);
+  // Map 3 - map 1: measured (5 + 7 + 6) / 3, paper (5 + 7 + 6) / 3.
+  EXPECT_EQ(agreement.night_minus_day.night_row, "3");
+  EXPECT_EQ(agreement.night_minus_day.day_row, "1");
+  EXPECT_NEAR(*agreement.night_minus_day.measured_pts, 6.0, 1e-12);
+  EXPECT_NEAR(*agreement.night_minus_day.paper_pts, 6.0, 1e-12);
+}
+
+TEST(ComputeAgreement, FeaturesPerFrameRatio) {
+  ReportTable timing(kTableTiming, "timing", {kRowFeaturesPerFrame}, kFeatures, 1);
+  timing.SetMeasured(kRowFeaturesPerFrame, "SU", 423.5);
+  timing.SetPaper(kRowFeaturesPerFrame, "SU", 847);
+  timing.SetMeasured(kRowFeaturesPerFrame, "OR", 1000);  // no paper value: no ratio
+  const AgreementReport agreement = ComputeAgreement({timing}, Matrix(true), Paper({}));
+  ASSERT_EQ(agreement.features_per_frame.size(), 1u);
+  EXPECT_EQ(agreement.features_per_frame[0].feature, "SU");
+  EXPECT_DOUBLE_EQ(agreement.features_per_frame[0].ratio, 0.5);
+}
+
+TEST(ComputeAgreement, FindingsDecidedByTheirRules) {
+  const std::vector<std::string> findings = {
+      "Single-session maps: re-localization is best on the diagonal (...)",
+      "SuperPoint (with or without SuperGlue) is the most robust to illumination change; ...",
+      "Merging more sessions with different illumination raises re-localization ...",
+      "A finding no number decides."};
+  ReportTable wrong(kTableWrongCount, "wrong", kRows, kFeatures);
+  for (const std::string& row : kRows) {
+    for (const std::string& feature : kFeatures) wrong.SetMeasured(row, feature, 0);
+  }
+  AgreementReport agreement =
+      ComputeAgreement({Relocalization(), wrong}, Matrix(true), Paper(findings));
+  ASSERT_EQ(agreement.findings.size(), 4u);
+  EXPECT_EQ(agreement.findings[0].verdict, FindingVerdict::kReproduced)
+      << agreement.findings[0].measured;
+  EXPECT_NE(agreement.findings[0].measured.find("9/9"), std::string::npos);
+  // BK has the lowest single-map mean on both sides.
+  EXPECT_EQ(agreement.findings[1].verdict, FindingVerdict::kReproduced)
+      << agreement.findings[1].measured;
+  EXPECT_EQ(agreement.findings[1].paper.rfind("holds", 0), 0u) << agreement.findings[1].paper;
+  // Each 1+2+3 is above its single maps and the best row; 1-2-3 trails it by
+  // 5 points: reproduced.
+  EXPECT_EQ(agreement.findings[2].verdict, FindingVerdict::kReproduced)
+      << agreement.findings[2].measured;
+  EXPECT_EQ(agreement.findings[3].verdict, FindingVerdict::kNotDecided);
+  EXPECT_TRUE(agreement.findings[3].criterion.empty());
+  EXPECT_EQ(agreement.FindingsReproduced(), 3);
+  EXPECT_EQ(agreement.FindingsDecided(), 3);
+
+  // Off the diagonal, and a merge below one of its single maps: not reproduced.
+  ReportTable relocalization = Relocalization();
+  relocalization.SetMeasured("1+2+3", "SI", 79);  // below map 2's 80
+  agreement = ComputeAgreement({relocalization}, Matrix(false), Paper(findings));
+  EXPECT_EQ(agreement.findings[0].verdict, FindingVerdict::kNotReproduced);
+  EXPECT_EQ(agreement.findings[2].verdict, FindingVerdict::kNotReproduced);
+  EXPECT_NE(agreement.findings[2].measured.find("2/3"), std::string::npos)
+      << agreement.findings[2].measured;
+}
+
+TEST(ComputeAgreement, NoWrongRelocalizationNeedsGroundTruth) {
+  const std::vector<std::string> findings = {"No wrong re-localization was accepted."};
+  AgreementReport agreement = ComputeAgreement({Relocalization()}, Matrix(true), Paper(findings));
+  EXPECT_EQ(agreement.findings[0].verdict, FindingVerdict::kNotDecided);
+  ReportTable wrong(kTableWrongCount, "wrong", kRows, kFeatures);
+  wrong.SetMeasured("2", "SI", 3);
+  wrong.SetMeasured("1|2|3", "SI", 3);  // the same jobs again: not counted twice
+  agreement = ComputeAgreement({Relocalization(), wrong}, Matrix(true), Paper(findings));
+  EXPECT_EQ(agreement.findings[0].verdict, FindingVerdict::kNotReproduced);
+  EXPECT_EQ(agreement.findings[0].measured.rfind("3 wrong", 0), 0u)
+      << agreement.findings[0].measured;
+}
+
+TEST(AgreementOutput, MarkdownAndJsonCarryTheNumbers) {
+  const AgreementReport agreement =
+      ComputeAgreement({Relocalization()}, Matrix(true),
+                       Paper({"Single-session maps: re-localization is best on the diagonal"}));
+  const std::string markdown = AgreementToMarkdown(agreement);
+  EXPECT_NE(markdown.find("| re-localization, single-session maps | points | 9 | 5.7 |"),
+            std::string::npos)
+      << markdown;
+  EXPECT_NE(markdown.find("Spearman ρ = 0.50 over 3 features"), std::string::npos);
+  EXPECT_NE(markdown.find("+6.0 points (paper +6.0)"), std::string::npos);
+  const nlohmann::json json = AgreementToJson(agreement);
+  EXPECT_EQ(json.at("deviations").at(0).at("cells"), 9);
+  EXPECT_EQ(json.at("deviations").at(2).at("mean_abs_deviation"), nullptr);
+  EXPECT_DOUBLE_EQ(json.at("ranking").at("spearman_rho").get<double>(), 0.5);
+  EXPECT_EQ(json.at("findings").at(0).at("verdict"), "reproduced");
+  EXPECT_EQ(json.at("findings_reproduced"), 1);
+}
+
+}  // namespace
+}  // namespace duskmap
