@@ -6,7 +6,8 @@ PACKAGES=(
   build-essential cmake pkg-config git
   libopencv-dev libeigen3-dev libflann-dev libceres-dev
   nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
-  libsqlite3-dev libcli11-dev
+  libsqlite3-dev libcli11-dev libzip-dev
+  sweethome3d-furniture  # real furniture models, slam/synthetic/furniture_catalog.h
   python3 python3-matplotlib python3-numpy python3-onnx
   clang libclang-rt-14-dev  # libFuzzer targets under tests/fuzz (docs/real_data.md)
 )
