@@ -28,6 +28,7 @@ cv::Mat SimulateDepth(const DepthSensorOptions& options, const Scene& scene, con
   std::vector<float> normal(z.cols), uniform(z.cols);
   std::vector<uint8_t> glass(scene.quads.size());
   for (size_t i = 0; i < scene.quads.size(); ++i) glass[i] = scene.quads[i].emission == Emission::kSky;
+  const int num_quads = static_cast<int>(scene.quads.size());
   const float min_range = static_cast<float>(options.min_range_m);
   const float max_range = static_cast<float>(options.max_range_m);
   const float min_cos = static_cast<float>(options.min_cos_incidence);
@@ -47,7 +48,7 @@ cv::Mat SimulateDepth(const DepthSensorOptions& options, const Scene& scene, con
     float* o = out.ptr<float>(r);
     for (int c = 0; c < z.cols; ++c) {
       const float d = zr[c];
-      if (id[c] < 0 || glass[id[c]]) continue;
+      if (id[c] < 0 || (id[c] < num_quads && glass[id[c]])) continue;  // meshes: >= num_quads
       if (d < min_range || d > max_range) continue;
       if (cos_r[c] < min_cos) continue;
       const float u = uniform[c];

@@ -89,8 +89,8 @@ std::vector<std::vector<int>> OccludersByRoom(const Scene& scene) {
   return occluders;
 }
 
-// Whether an occluder lies on the segment from `point` along the unit
-// `direction` up to `distance`.
+// Whether an occluder (one of the room's quads or a furniture mesh) lies on
+// the segment from `point` along the unit `direction` up to `distance`.
 bool Occluded(const Scene& scene, const std::vector<int>& occluders, const Eigen::Vector3d& point,
               const Eigen::Vector3d& direction, double distance, int receiver_quad) {
   for (const int i : occluders) {
@@ -98,7 +98,10 @@ bool Occluded(const Scene& scene, const std::vector<int>& occluders, const Eigen
     const double d = scene.quads[static_cast<size_t>(i)].Intersect(point, direction);
     if (d > 1e-4 && d < distance) return true;
   }
-  return false;
+  // The furniture meshes (any room: light reaches a room only through its
+  // own windows and from its own lamps, so a piece elsewhere is never
+  // between).
+  return scene.mesh_occluders.Occluded(point, direction, distance);
 }
 
 // Whether the sun reaches `point` through window `w` (mullions and the
@@ -340,8 +343,8 @@ std::vector<cv::Vec3f> AmbientPerRoom(const Scene& scene, const std::vector<Ligh
 
 }  // namespace
 
-std::vector<cv::Mat> PrepareRadiance(const Scene& scene, const SessionLighting& lighting,
-                                     const LightingOptions& options) {
+SessionRadiance PrepareSessionRadiance(const Scene& scene, const SessionLighting& lighting,
+                                       const LightingOptions& options) {
   const std::vector<std::vector<int>> occluders = OccludersByRoom(scene);
   std::vector<LightMap> maps(scene.quads.size());
   for (size_t i = 0; i < scene.quads.size(); ++i) {
@@ -381,7 +384,34 @@ std::vector<cv::Mat> PrepareRadiance(const Scene& scene, const SessionLighting& 
     }
     radiance[i] = out;
   }
-  return radiance;
+  SessionRadiance session;
+  session.quads = std::move(radiance);
+  // Meshes, per vertex: the direct light at the vertex (1 mm off its surface
+  // along its normal, so that its own triangles do not shadow it) with the
+  // room's ambient term.
+  session.mesh_vertex_light.resize(scene.meshes.size());
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    const SceneMesh& mesh = scene.meshes[m];
+    static const std::vector<int> kNone;
+    const bool known_room = mesh.room >= 0 && mesh.room < static_cast<int>(occluders.size());
+    const std::vector<int>& room_occluders = known_room ? occluders[static_cast<size_t>(mesh.room)] : kNone;
+    const cv::Vec3f room_ambient = known_room ? ambient[static_cast<size_t>(mesh.room)] : cv::Vec3f(0, 0, 0);
+    std::vector<cv::Vec3f>& light = session.mesh_vertex_light[m];
+    light.resize(mesh.positions_in_world.size());
+    for (size_t v = 0; v < light.size(); ++v) {
+      const Eigen::Vector3d n = mesh.normals_in_world[v].cast<double>();
+      const Eigen::Vector3d p = mesh.positions_in_world[v].cast<double>() + 1e-3 * n;
+      const IrradianceParts parts = DirectIrradiance(scene, lighting, room_occluders, p, n, mesh.room, -1);
+      light[v] = (parts.total() + room_ambient) * inv_pi;
+    }
+  }
+  return session;
+}
+
+std::vector<cv::Mat> PrepareRadiance(const Scene& scene, const SessionLighting& lighting,
+                                     const LightingOptions& options) {
+  SLAM_CHECK_MSG(scene.meshes.empty(), "PrepareRadiance: a scene with meshes needs PrepareSessionRadiance");
+  return PrepareSessionRadiance(scene, lighting, options).quads;
 }
 
 }  // namespace duskmap

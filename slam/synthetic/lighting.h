@@ -72,9 +72,25 @@ IrradianceParts ComputeDirectIrradiance(const Scene& scene, const SessionLightin
                                         const Eigen::Vector3d& point, const Eigen::Vector3d& normal,
                                         int room, int receiver_quad);
 
-// Lighting preparation: the radiance texture (nits, CV_32FC3) of every quad
-// for this session, i.e. albedo x light map / pi for diffuse quads (light map
-// with ambient term), the sky for windows, the glow of lit lamp shades.
+// What a session's frames are rendered with (renderer.h).
+struct SessionRadiance {
+  // The radiance texture (nits, CV_32FC3) of every quad: albedo x light map
+  // / pi for diffuse quads (light map with ambient term), the sky for
+  // windows, the glow of lit lamp shades.
+  std::vector<cv::Mat> quads;
+  // Per scene mesh, per vertex: (direct irradiance + the room's ambient) /
+  // pi, the radiance of a unit albedo there (nits, linear BGR); the renderer
+  // interpolates it over each triangle and multiplies the texture's albedo.
+  std::vector<std::vector<cv::Vec3f>> mesh_vertex_light;
+};
+
+// Lighting preparation of a session: quads and meshes. Meshes cast shadows
+// on quads and on each other; they are left out of the ambient term (the
+// room's mean over its quads).
+SessionRadiance PrepareSessionRadiance(const Scene& scene, const SessionLighting& lighting,
+                                       const LightingOptions& options);
+
+// The quads' radiance textures alone, for a scene without meshes.
 std::vector<cv::Mat> PrepareRadiance(const Scene& scene, const SessionLighting& lighting,
                                      const LightingOptions& options);
 

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "slam/core/check.h"
+#include "slam/synthetic/mip_texture.h"
+#include "slam/synthetic/triangle_raster.h"
 
 namespace duskmap {
 
@@ -201,8 +204,120 @@ void Renderer::AddReflection(int mirror, const std::vector<cv::Mat>& radiance,
   }
 }
 
+void Renderer::RenderMeshes(const std::vector<std::vector<cv::Vec3f>>& vertex_light,
+                            const Rigid3d& camera_from_world, RenderedView* view) const {
+  SLAM_CHECK(vertex_light.size() == scene_.meshes.size());
+  const cv::Size size(camera_.width, camera_.height);
+  TriangleRasterTarget target;
+  target.inv_depth = view->depth_m;  // shares the quads' inverse depths
+  target.ids.create(size, CV_32SC1);
+  target.ids.setTo(cv::Scalar(-1));
+  target.barycentrics.create(size, CV_32FC2);
+  TriangleRasterOptions options;
+  options.near_m = near_m_;
+  options.cull_mode = CullMode::kNone;
+  const Eigen::Matrix3d rotation = camera_from_world.rotation.toRotationMatrix();
+  const Eigen::Vector3d& translation = camera_from_world.translation;
+  std::vector<std::vector<Eigen::Vector3d>> in_camera(scene_.meshes.size());
+  std::vector<int> first_id(scene_.meshes.size() + 1, 0);
+  for (size_t m = 0; m < scene_.meshes.size(); ++m) {
+    const SceneMesh& mesh = scene_.meshes[m];
+    SLAM_CHECK(vertex_light[m].size() == mesh.positions_in_world.size());
+    first_id[m + 1] = first_id[m] + static_cast<int>(mesh.triangles.size());
+    // Skip a mesh whose box lies wholly behind the near plane or beside the image.
+    bool all_near = true, all_left = true, all_right = true, all_above = true, all_below = true;
+    for (int k = 0; k < 8; ++k) {
+      const Eigen::Vector3d c = rotation * mesh.bounds_in_world.corner(
+                                               static_cast<Eigen::AlignedBox3d::CornerType>(k)) +
+                                translation;
+      all_near = all_near && c.z() < near_m_;
+      all_left = all_left && camera_.fx * c.x() + camera_.cx * c.z() < -0.5 * c.z();
+      all_right = all_right && camera_.fx * c.x() + camera_.cx * c.z() > (camera_.width - 0.5) * c.z();
+      all_above = all_above && camera_.fy * c.y() + camera_.cy * c.z() < -0.5 * c.z();
+      all_below = all_below && camera_.fy * c.y() + camera_.cy * c.z() > (camera_.height - 0.5) * c.z();
+    }
+    if (all_near || all_left || all_right || all_above || all_below) continue;
+    std::vector<Eigen::Vector3d>& points = in_camera[m];
+    points.resize(mesh.positions_in_world.size());
+    for (size_t v = 0; v < points.size(); ++v) {
+      points[v] = rotation * mesh.positions_in_world[v].cast<double>() + translation;
+    }
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+      const std::array<int, 3>& tri = mesh.triangles[t];
+      RasterizeTriangle(camera_, options, {points[tri[0]], points[tri[1]], points[tri[2]]},
+                        first_id[m] + static_cast<int>(t), &target);
+    }
+  }
+  // Shading: the pixels a triangle won.
+  const int num_quads = static_cast<int>(scene_.quads.size());
+  int cached_id = -1;
+  std::optional<ProjectedTriangle> projected;
+  for (int row = 0; row < size.height; ++row) {
+    const int* tri_row = target.ids.ptr<int>(row);
+    const cv::Vec2f* bary_row = target.barycentrics.ptr<cv::Vec2f>(row);
+    int* id_row = view->surface_id.ptr<int>(row);
+    float* depth_row = view->depth_m.ptr<float>(row);
+    cv::Vec3f* out = view->radiance.ptr<cv::Vec3f>(row);
+    float* cos_out = view->cos_incidence.ptr<float>(row);
+    for (int col = 0; col < size.width; ++col) {
+      const int id = tri_row[col];
+      if (id < 0) continue;
+      const size_t m = static_cast<size_t>(
+          std::upper_bound(first_id.begin(), first_id.end(), id) - first_id.begin() - 1);
+      const SceneMesh& mesh = scene_.meshes[m];
+      const std::array<int, 3>& tri = mesh.triangles[static_cast<size_t>(id - first_id[m])];
+      const std::vector<Eigen::Vector3d>& points = in_camera[m];
+      if (id != cached_id) {
+        projected.emplace(camera_, std::array<Eigen::Vector3d, 3>{points[tri[0]], points[tri[1]],
+                                                                   points[tri[2]]});
+        cached_id = id;
+      }
+      const float b1 = bary_row[col][0], b2 = bary_row[col][1], b0 = 1.0f - b1 - b2;
+      const std::vector<cv::Vec3f>& light = vertex_light[m];
+      const cv::Vec3f lit = light[tri[0]] * b0 + light[tri[1]] * b1 + light[tri[2]] * b2;
+      const SceneMaterial& material =
+          mesh.materials[static_cast<size_t>(mesh.triangle_material[static_cast<size_t>(id - first_id[m])])];
+      cv::Vec3f albedo = material.diffuse_bgr;
+      if (material.texture) {
+        const Eigen::Vector2f& t0 = mesh.texcoords[tri[0]];
+        const Eigen::Vector2f e1 = (mesh.texcoords[tri[1]] - t0).cwiseProduct(material.texture_scale);
+        const Eigen::Vector2f e2 = (mesh.texcoords[tri[2]] - t0).cwiseProduct(material.texture_scale);
+        const Eigen::Vector2f uv =
+            material.texture_offset + t0.cwiseProduct(material.texture_scale) + b1 * e1 + b2 * e2;
+        const BarycentricDerivatives d = projected->Derivatives(col, row);
+        const double footprint = FootprintTexels(
+            d.d_dx(0) * e1.x() + d.d_dx(1) * e2.x(), d.d_dx(0) * e1.y() + d.d_dx(1) * e2.y(),
+            d.d_dy(0) * e1.x() + d.d_dy(1) * e2.x(), d.d_dy(0) * e1.y() + d.d_dy(1) * e2.y(),
+            material.texture->width(), material.texture->height());
+        albedo = albedo.mul(material.texture->Sample(uv.x(), uv.y(), footprint));
+      }
+      out[col] = albedo.mul(lit);
+      const double z = 1.0 / depth_row[col];
+      depth_row[col] = static_cast<float>(z);
+      id_row[col] = num_quads + static_cast<int>(m);
+      const Eigen::Vector3d normal =
+          (points[tri[1]] - points[tri[0]]).cross(points[tri[2]] - points[tri[0]]);
+      const Eigen::Vector3d ray((col - camera_.cx) / camera_.fx, (row - camera_.cy) / camera_.fy, 1.0);
+      const double denominator = normal.norm() * ray.norm();
+      cos_out[col] = denominator > 0.0 ? static_cast<float>(std::abs(normal.dot(ray)) / denominator) : 0.0f;
+    }
+  }
+}
+
+void Renderer::Render(const SessionRadiance& radiance, const Rigid3d& world_from_camera,
+                      RenderedView* view) const {
+  RenderScene(radiance.quads, &radiance.mesh_vertex_light, world_from_camera, view);
+}
+
 void Renderer::Render(const std::vector<cv::Mat>& radiance, const Rigid3d& world_from_camera,
                       RenderedView* view) const {
+  SLAM_CHECK_MSG(scene_.meshes.empty(), "Renderer::Render: a scene with meshes needs its SessionRadiance");
+  RenderScene(radiance, nullptr, world_from_camera, view);
+}
+
+void Renderer::RenderScene(const std::vector<cv::Mat>& radiance,
+                           const std::vector<std::vector<cv::Vec3f>>* mesh_light,
+                           const Rigid3d& world_from_camera, RenderedView* view) const {
   SLAM_CHECK(radiance.size() == scene_.quads.size());
   const Rigid3d camera_from_world = world_from_camera.Inverse();
   const cv::Size size(camera_.width, camera_.height);
@@ -221,6 +336,10 @@ void Renderer::Render(const std::vector<cv::Mat>& radiance, const Rigid3d& world
   const std::vector<Texture> textures = TexturesOf(radiance);
   view->radiance.create(size, CV_32FC3);
   view->cos_incidence.create(size, CV_32FC1);
+  if (mesh_light != nullptr && !scene_.meshes.empty()) {
+    RenderMeshes(*mesh_light, camera_from_world, view);
+  }
+  const int num_quads = static_cast<int>(scene_.quads.size());
   const double inv_fx = 1.0 / camera_.fx;
   for (int row = 0; row < size.height; ++row) {
     const int* id_row = view->surface_id.ptr<int>(row);
@@ -237,6 +356,7 @@ void Renderer::Render(const std::vector<cv::Mat>& radiance, const Rigid3d& world
         cos_out[col] = 0.0f;
         continue;
       }
+      if (id >= num_quads) continue;  // a mesh, shaded already
       const QuadSetup& s = setups[id];
       const double z = 1.0 / depth_row[col];
       Sample(s, textures[id], col, row, z, out);
@@ -251,7 +371,7 @@ void Renderer::Render(const std::vector<cv::Mat>& radiance, const Rigid3d& world
   for (int row = 0; row < size.height; ++row) {
     const int* id_row = view->surface_id.ptr<int>(row);
     for (int col = 0; col < size.width; ++col) {
-      if (id_row[col] >= 0) seen[id_row[col]] = true;
+      if (id_row[col] >= 0 && id_row[col] < num_quads) seen[id_row[col]] = true;
     }
   }
   for (size_t i = 0; i < scene_.quads.size(); ++i) {

@@ -1,4 +1,5 @@
-// Z-buffer rasterizer of the scene's textured quads: a depth/id pass (with
+// Z-buffer rasterizer of the scene's textured quads and furniture meshes
+// (triangle_raster.h): for the quads a depth/id pass (with
 // back-face culling and near-plane clipping) followed by one perspective-
 // correct bilinear texture lookup per pixel into the session's prepared
 // radiance textures. Mirror quads (Quad::mirror_reflectance > 0, window
@@ -13,6 +14,7 @@
 
 #include "slam/core/camera.h"
 #include "slam/core/rigid3.h"
+#include "slam/synthetic/lighting.h"
 #include "slam/synthetic/scene.h"
 
 namespace duskmap {
@@ -20,7 +22,9 @@ namespace duskmap {
 struct RenderedView {
   cv::Mat radiance;       // CV_32FC3 linear BGR nits; 0 where nothing is seen
   cv::Mat depth_m;        // CV_32FC1 distance along the optical axis; 0 = nothing
-  cv::Mat surface_id;     // CV_32SC1 quad index; -1 = nothing
+  // CV_32SC1: the quad index, or quads.size() + the mesh index where a
+  // furniture mesh is seen; -1 = nothing.
+  cv::Mat surface_id;
   cv::Mat cos_incidence;  // CV_32FC1 cosine between viewing ray and surface normal
 };
 
@@ -28,7 +32,15 @@ class Renderer {
  public:
   Renderer(const Scene& scene, const PinholeCamera& camera, double near_m = 0.05);
 
-  // Renders with `radiance` from PrepareRadiance (one texture per quad).
+  // Renders with the session's radiance (PrepareSessionRadiance): the quads,
+  // then the meshes' triangles into the same depth buffer (both sides drawn:
+  // catalog models have open, one-sided parts), each mesh pixel shaded with
+  // its material's mip-mapped texture times the vertex light interpolated
+  // perspective-correctly. Mirrors reflect the quads only.
+  void Render(const SessionRadiance& radiance, const Rigid3d& world_from_camera,
+              RenderedView* view) const;
+  // Renders a scene without meshes with `radiance` from PrepareRadiance (one
+  // texture per quad).
   void Render(const std::vector<cv::Mat>& radiance, const Rigid3d& world_from_camera,
               RenderedView* view) const;
 
@@ -49,6 +61,14 @@ class Renderer {
                  QuadSetup* setup) const;
   void RasterizeDepth(const QuadSetup& setup, cv::Mat* inv_depth, cv::Mat* ids,
                       const MirrorMask* mask = nullptr) const;
+  void RenderScene(const std::vector<cv::Mat>& radiance,
+                   const std::vector<std::vector<cv::Vec3f>>* mesh_light,
+                   const Rigid3d& world_from_camera, RenderedView* view) const;
+  // Draws the meshes' triangles into view->depth_m (inverse depth, the
+  // quads' already there), marks their pixels in view->surface_id and
+  // shades them into view->radiance, view->cos_incidence.
+  void RenderMeshes(const std::vector<std::vector<cv::Vec3f>>& vertex_light,
+                    const Rigid3d& camera_from_world, RenderedView* view) const;
   // Blends the room reflected in mirror quad `mirror` into view->radiance.
   void AddReflection(int mirror, const std::vector<cv::Mat>& radiance,
                      const Rigid3d& camera_from_world, RenderedView* view) const;

@@ -1,5 +1,7 @@
 #include "slam/synthetic/scene.h"
 
+#include <utility>
+
 #include <cmath>
 
 namespace duskmap {
@@ -34,6 +36,11 @@ Eigen::Matrix3d CameraRotationFromYawPitchRoll(double yaw_rad, double pitch_rad,
   world_from_camera.col(1) = down;
   world_from_camera.col(2) = forward;
   return world_from_camera;
+}
+
+void Scene::SetMeshes(std::vector<SceneMesh> new_meshes) {
+  meshes = std::move(new_meshes);
+  mesh_occluders = BuildMeshOccluders(meshes);
 }
 
 }  // namespace duskmap

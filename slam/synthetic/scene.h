@@ -10,6 +10,8 @@
 #include <opencv2/core.hpp>
 
 #include "slam/core/rigid3.h"
+#include "slam/synthetic/scene_mesh.h"
+#include "slam/synthetic/triangle_bvh.h"
 
 namespace duskmap {
 
@@ -61,6 +63,11 @@ struct Scene {
   std::vector<std::string> room_names;
   std::vector<Quad> quads;
   std::vector<Lamp> lamps;
+  // Furniture meshes (scene_mesh.h), lit per vertex and drawn after the
+  // quads; and their triangles for shadow rays, kept in step by
+  // SetMeshes.
+  std::vector<SceneMesh> meshes;
+  TriangleBvh mesh_occluders;
   Eigen::Vector2d min_corner_xy = Eigen::Vector2d::Zero();  // footprint, metres
   Eigen::Vector2d max_corner_xy = Eigen::Vector2d::Zero();
   int docking_picture = -1;           // quad index of the docking picture
@@ -68,6 +75,8 @@ struct Scene {
   Rigid3d window_world_from_camera;   // living room view towards a window (previews)
 
   double FloorAreaM2() const;
+  // Replaces the meshes and rebuilds mesh_occluders.
+  void SetMeshes(std::vector<SceneMesh> new_meshes);
 };
 
 // Camera orientation looking along yaw (radians from +x towards +y), with

@@ -9,7 +9,7 @@ SessionSimulator::SessionSimulator(const GeneratorConfig& config, const Scene& s
     : config_(config),
       scene_(scene),
       lighting_(ComputeSessionLighting(config.lighting, scene, clock_time_h)),
-      radiance_(PrepareRadiance(scene, lighting_, config.lighting)),
+      radiance_(PrepareSessionRadiance(scene, lighting_, config.lighting)),
       renderer_(scene, config.camera.Intrinsics()),
       camera_(config.camera, DeriveSeed(seed, 1)),
       depth_noise_(DeriveSeed(seed, 2)) {}

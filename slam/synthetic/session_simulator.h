@@ -31,7 +31,7 @@ class SessionSimulator {
   void Settle(const Rigid3d& world_from_camera, int iterations);
 
   const SessionLighting& lighting() const { return lighting_; }
-  const std::vector<cv::Mat>& radiance() const { return radiance_; }
+  const SessionRadiance& radiance() const { return radiance_; }
   const Renderer& renderer() const { return renderer_; }
   const CameraModel& camera() const { return camera_; }
   const RenderedView& last_view() const { return view_; }
@@ -40,7 +40,7 @@ class SessionSimulator {
   const GeneratorConfig& config_;
   const Scene& scene_;
   SessionLighting lighting_;
-  std::vector<cv::Mat> radiance_;
+  SessionRadiance radiance_;
   Renderer renderer_;
   CameraModel camera_;
   SensorNoise depth_noise_;
