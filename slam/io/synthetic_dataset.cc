@@ -51,7 +51,14 @@ void WriteManifest(const std::string& dataset_path, const DatasetManifest& manif
     sessions.push_back(
         {{"name", s.name}, {"folder", s.folder}, {"clock_time", s.clock_time}, {"role", s.role}});
   }
-  const nlohmann::json json = {{"format", kSyntheticFormat}, {"version", 1}, {"sessions", sessions}};
+  nlohmann::json json = {{"format", kSyntheticFormat}, {"version", 1}, {"sessions", sessions}};
+  if (!manifest.assets.empty()) {
+    nlohmann::json assets = nlohmann::json::array();
+    for (const ManifestAsset& a : manifest.assets) {
+      assets.push_back({{"name", a.name}, {"source", a.source}, {"creator", a.creator}, {"license", a.license}});
+    }
+    json["assets"] = assets;
+  }
   const std::string path = dataset_path + "/" + kManifestFileName;
   std::ofstream out(path);
   SLAM_THROW_IF_NOT(InputError, out.good()) << path << ": cannot write manifest";
@@ -92,6 +99,20 @@ DatasetManifest ReadManifest(const std::string& dataset_path) {
       SLAM_THROW_IF_NOT(InputError, names.insert(session.name).second)
           << path << ": duplicate session '" << session.name << "'";
       manifest.sessions.push_back(session);
+    }
+    if (f.Has("assets")) {
+      const nlohmann::json& assets = f.Raw("assets");
+      SLAM_THROW_IF_NOT(InputError, assets.is_array()) << path << ": 'assets' must be an array";
+      for (size_t i = 0; i < assets.size(); ++i) {
+        JsonFields a(assets[i], path + ":assets[" + std::to_string(i) + "]");
+        ManifestAsset asset;
+        a.ReadRequired("name", &asset.name);
+        a.ReadRequired("source", &asset.source);
+        a.Read("creator", &asset.creator);
+        a.ReadRequired("license", &asset.license);
+        a.RejectUnknown();
+        manifest.assets.push_back(asset);
+      }
     }
     f.RejectUnknown();
   } catch (const ConfigError& e) {

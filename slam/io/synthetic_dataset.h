@@ -27,8 +27,18 @@ struct ManifestSession {
   std::string role;        // "mapping" or "localization"
 };
 
+// A third-party asset the dataset's frames show (a furniture model), with
+// its licence, as the licence asks to be credited.
+struct ManifestAsset {
+  std::string name;     // "Bed"
+  std::string source;   // where it was read from: "BlendSwap-CC-0.sh3f#Blend Swap CC-0#bed1"
+  std::string creator;
+  std::string license;
+};
+
 struct DatasetManifest {
   std::vector<ManifestSession> sessions;
+  std::vector<ManifestAsset> assets;  // written only when there are any
 };
 
 void WriteManifest(const std::string& dataset_path, const DatasetManifest& manifest);

@@ -54,10 +54,12 @@ void AddLivingRoom(SceneBuilder& b, const ApartmentOptions& options) {
   b.AddVertical({3.6, 4.59}, {0, -1}, 0.7, 1.2, 1.9, room, TextureKind::kPoster, {});
   b.AddSwitch(true, 4.6, {0, -1}, 4.55, 1.05, room);
   // Sofa with cushions, rug, coffee table with magazines and a bowl.
-  b.AddBox({0.6, 3.75, 0.0}, {2.8, 4.6, 0.45}, room, TextureKind::kFabric, {0.35f, 0.25f, 0.2f});
-  b.AddBox({0.6, 4.3, 0.45}, {2.8, 4.58, 0.85}, room, TextureKind::kFabric, {0.33f, 0.24f, 0.19f});
-  for (const double x : {0.7, 1.35, 2.0}) {
-    b.AddBox({x, 4.08, 0.45}, {x + 0.5, 4.3, 0.8}, room, TextureKind::kCurtain, {0.5f, 0.45f, 0.3f});
+  if (options.box_furniture) {
+    b.AddBox({0.6, 3.75, 0.0}, {2.8, 4.6, 0.45}, room, TextureKind::kFabric, {0.35f, 0.25f, 0.2f});
+    b.AddBox({0.6, 4.3, 0.45}, {2.8, 4.58, 0.85}, room, TextureKind::kFabric, {0.33f, 0.24f, 0.19f});
+    for (const double x : {0.7, 1.35, 2.0}) {
+      b.AddBox({x, 4.08, 0.45}, {x + 0.5, 4.3, 0.8}, room, TextureKind::kCurtain, {0.5f, 0.45f, 0.3f});
+    }
   }
   b.AddBox({0.7, 2.5, 0.0}, {2.9, 3.7, 0.006}, room, TextureKind::kRug, {0.15f, 0.2f, 0.45f});
   b.AddBox({1.1, 2.95, 0.0}, {2.3, 3.5, 0.42}, room, TextureKind::kWood, {0.1f, 0.18f, 0.3f});
@@ -65,16 +67,20 @@ void AddLivingRoom(SceneBuilder& b, const ApartmentOptions& options) {
   b.AddPlant({0.32, 4.28}, 1.25, room);
   // South wall: TV on its stand, a picture above, the patio window with
   // curtains, a plant, the bookshelf.
-  b.AddBoxWithFront({0.2, 0.0, 0.0}, {1.6, 0.45, 0.5}, {0, 1}, room, TextureKind::kWood,
-                    {0.12f, 0.14f, 0.16f}, TextureKind::kCabinet, {0.14f, 0.16f, 0.18f});
-  b.AddBoxWithFront({0.35, 0.12, 0.52}, {1.3, 0.17, 1.08}, {0, 1}, room, TextureKind::kPaint,
-                    {0.03f, 0.03f, 0.03f}, TextureKind::kScreen, {});
-  b.AddBox({0.75, 0.1, 0.5}, {0.9, 0.2, 0.52}, room, TextureKind::kPaint, {0.03f, 0.03f, 0.03f});
+  if (options.box_furniture) {
+    b.AddBoxWithFront({0.2, 0.0, 0.0}, {1.6, 0.45, 0.5}, {0, 1}, room, TextureKind::kWood,
+                      {0.12f, 0.14f, 0.16f}, TextureKind::kCabinet, {0.14f, 0.16f, 0.18f});
+    b.AddBoxWithFront({0.35, 0.12, 0.52}, {1.3, 0.17, 1.08}, {0, 1}, room, TextureKind::kPaint,
+                      {0.03f, 0.03f, 0.03f}, TextureKind::kScreen, {});
+    b.AddBox({0.75, 0.1, 0.5}, {0.9, 0.2, 0.52}, room, TextureKind::kPaint, {0.03f, 0.03f, 0.03f});
+  }
   b.AddObjectsOnSurface(1.32, 1.58, 0.05, 0.4, 0.5, 1, {0, 1}, room);
   b.AddWallItem(true, 0.0, {0, 1}, 0.82, 0.6, 1.45, 1.9, room, TextureKind::kPicture);
   b.AddCurtains(true, 0.0, {0, 1}, patio, 0.0, room, 0.2);
   b.AddPlant({4.05, 0.45}, 1.1, room);
-  b.AddBox({4.4, 0.0, 0.0}, {5.9, 0.35, 2.0}, room, TextureKind::kBooks, {});
+  if (options.box_furniture) {
+    b.AddBox({4.4, 0.0, 0.0}, {5.9, 0.35, 2.0}, room, TextureKind::kBooks, {});
+  }
   // West wall: radiators and curtains at both windows, the table-lamp cabinet
   // and a small clock between them.
   for (const WallOpening& w : {west_a, west_b}) {
@@ -90,11 +96,13 @@ void AddLivingRoom(SceneBuilder& b, const ApartmentOptions& options) {
                                  35.0 * options.lamp_intensity_scale, "");
   AddShade(b, table_lamp, {0.1, 0.1, 0.11});
   // Dining table with a bowl and three chairs.
-  b.AddTable(3.9, 5.1, 2.2, 3.0, 0.76, room, {0.15f, 0.3f, 0.45f});
-  b.AddObjectsOnSurface(4.0, 5.0, 2.3, 2.9, 0.76, 3, {0, -1}, room);
-  b.AddChair({4.2, 3.2}, {0, -1}, room, {0.2f, 0.25f, 0.35f});
-  b.AddChair({4.8, 3.2}, {0, -1}, room, {0.2f, 0.25f, 0.35f});
-  b.AddChair({5.35, 2.6}, {-1, 0}, room, {0.2f, 0.25f, 0.35f});
+  if (options.box_furniture) {
+    b.AddTable(3.9, 5.1, 2.2, 3.0, 0.76, room, {0.15f, 0.3f, 0.45f});
+    b.AddObjectsOnSurface(4.0, 5.0, 2.3, 2.9, 0.76, 3, {0, -1}, room);
+    b.AddChair({4.2, 3.2}, {0, -1}, room, {0.2f, 0.25f, 0.35f});
+    b.AddChair({4.8, 3.2}, {0, -1}, room, {0.2f, 0.25f, 0.35f});
+    b.AddChair({5.35, 2.6}, {-1, 0}, room, {0.2f, 0.25f, 0.35f});
+  }
   // East wall pieces beside the kitchen passage.
   b.AddVertical({5.99, 4.1}, {-1, 0}, 0.7, 1.1, 2.0, room, TextureKind::kPoster, {});
   b.AddVertical({5.99, 0.6}, {-1, 0}, 0.8, 1.2, 1.8, room, TextureKind::kPicture, {});
@@ -144,10 +152,12 @@ void AddKitchen(SceneBuilder& b, const ApartmentOptions& options) {
     }
   }
   // Table, two chairs, a bowl.
-  b.AddTable(7.3, 8.5, 1.6, 2.6, 0.76, room, {0.2f, 0.35f, 0.5f});
-  b.AddObjectsOnSurface(7.4, 8.4, 1.7, 2.5, 0.76, 3, {0, -1}, room);
-  b.AddChair({7.05, 2.1}, {1, 0}, room, {0.3f, 0.2f, 0.15f});
-  b.AddChair({7.9, 2.85}, {0, -1}, room, {0.3f, 0.2f, 0.15f});
+  if (options.box_furniture) {
+    b.AddTable(7.3, 8.5, 1.6, 2.6, 0.76, room, {0.2f, 0.35f, 0.5f});
+    b.AddObjectsOnSurface(7.4, 8.4, 1.7, 2.5, 0.76, 3, {0, -1}, room);
+    b.AddChair({7.05, 2.1}, {1, 0}, room, {0.3f, 0.2f, 0.15f});
+    b.AddChair({7.9, 2.85}, {0, -1}, room, {0.3f, 0.2f, 0.15f});
+  }
   // South wall: window with curtains and a radiator, a spice shelf, a poster.
   b.AddCurtains(true, 0.0, {0, 1}, window, 0.9, room, 0.25);
   b.AddRadiator(true, 0.0, {0, 1}, 8.1, 1.0, room);
@@ -239,12 +249,14 @@ void AddBedroom(SceneBuilder& b, const ApartmentOptions& options) {
   b.AddRoomShell({0, 5.5, 6.0, 9.0}, room, {{DoorOpening(2.0, 2.9, false)}, {window}, {}, {}},
                  {paint, paint, wallpaper, paint}, TextureKind::kWoodFloor, {0.25f, 0.38f, 0.5f});
   // Bed with duvet and pillows, headboard, bedside table with the lamp.
-  b.AddBox({2.4, 7.0, 0.0}, {4.4, 9.0, 0.55}, room, TextureKind::kFabric, {0.55f, 0.45f, 0.4f});
-  b.AddHorizontal(2.45, 4.35, 7.05, 8.4, 0.553, true, room, TextureKind::kCurtain, {0.6f, 0.5f, 0.45f});
-  for (const double x : {2.55, 3.55}) {
-    b.AddBox({x, 8.5, 0.55}, {x + 0.7, 8.88, 0.7}, room, TextureKind::kFabric, {0.75f, 0.75f, 0.72f});
+  if (options.box_furniture) {
+    b.AddBox({2.4, 7.0, 0.0}, {4.4, 9.0, 0.55}, room, TextureKind::kFabric, {0.55f, 0.45f, 0.4f});
+    b.AddHorizontal(2.45, 4.35, 7.05, 8.4, 0.553, true, room, TextureKind::kCurtain, {0.6f, 0.5f, 0.45f});
+    for (const double x : {2.55, 3.55}) {
+      b.AddBox({x, 8.5, 0.55}, {x + 0.7, 8.88, 0.7}, room, TextureKind::kFabric, {0.75f, 0.75f, 0.72f});
+    }
+    b.AddBox({2.4, 8.92, 0.55}, {4.4, 9.0, 1.1}, room, TextureKind::kWood, {0.1f, 0.2f, 0.32f});
   }
-  b.AddBox({2.4, 8.92, 0.55}, {4.4, 9.0, 1.1}, room, TextureKind::kWood, {0.1f, 0.2f, 0.32f});
   b.AddBoxWithFront({4.45, 8.5, 0.0}, {4.85, 8.95, 0.55}, {0, -1}, room, TextureKind::kWood,
                     {0.1f, 0.2f, 0.32f}, TextureKind::kCabinet, {0.1f, 0.2f, 0.32f});
   b.AddObjectsOnSurface(4.47, 4.54, 8.52, 8.93, 0.55, 1, {0, -1}, room);
@@ -255,15 +267,19 @@ void AddBedroom(SceneBuilder& b, const ApartmentOptions& options) {
     AddCeilingLight(b, "bedroom ceiling", {2.6, 7.0}, room, options.bedroom_ceiling_cd, options);
   }
   // Wardrobe, dresser with objects, bookshelf, rug, plant, laundry basket.
-  b.AddBoxWithFront({4.9, 6.2, 0.0}, {5.5, 8.2, 2.1}, {-1, 0}, room, TextureKind::kWood,
-                    {0.2f, 0.3f, 0.4f}, TextureKind::kCabinet, {0.22f, 0.32f, 0.42f});
-  b.AddBoxWithFront({0.3, 6.0, 0.0}, {1.6, 6.45, 0.8}, {0, 1}, room, TextureKind::kWood,
-                    {0.15f, 0.25f, 0.35f}, TextureKind::kCabinet, {0.15f, 0.25f, 0.35f});
-  b.AddObjectsOnSurface(0.35, 1.55, 6.05, 6.4, 0.8, 4, {0, 1}, room);
+  if (options.box_furniture) {
+    b.AddBoxWithFront({4.9, 6.2, 0.0}, {5.5, 8.2, 2.1}, {-1, 0}, room, TextureKind::kWood,
+                      {0.2f, 0.3f, 0.4f}, TextureKind::kCabinet, {0.22f, 0.32f, 0.42f});
+    b.AddBoxWithFront({0.3, 6.0, 0.0}, {1.6, 6.45, 0.8}, {0, 1}, room, TextureKind::kWood,
+                      {0.15f, 0.25f, 0.35f}, TextureKind::kCabinet, {0.15f, 0.25f, 0.35f});
+    b.AddObjectsOnSurface(0.35, 1.55, 6.05, 6.4, 0.8, 4, {0, 1}, room);
+  }
   b.AddBox({0.0, 8.3, 0.0}, {0.35, 8.95, 1.8}, room, TextureKind::kBooks, {});
   b.AddBox({1.4, 7.2, 0.0}, {2.3, 8.6, 0.006}, room, TextureKind::kRug, {0.35f, 0.2f, 0.2f});
-  b.AddWallItem(false, 4.9, {-1, 0}, 6.65, 0.4, 1.2, 1.75, room, TextureKind::kPoster);
-  b.AddBox({4.82, 7.1, 0.9}, {4.9, 7.45, 1.4}, room, TextureKind::kCurtain, {0.25f, 0.3f, 0.5f});
+  if (options.box_furniture) {  // on the wardrobe's doors
+    b.AddWallItem(false, 4.9, {-1, 0}, 6.65, 0.4, 1.2, 1.75, room, TextureKind::kPoster);
+    b.AddBox({4.82, 7.1, 0.9}, {4.9, 7.45, 1.4}, room, TextureKind::kCurtain, {0.25f, 0.3f, 0.5f});
+  }
   b.AddPlant({5.2, 8.65}, 1.3, room);
   // Window with curtains and a radiator; pictures; a switch by the door.
   b.AddCurtains(false, 0.0, {1, 0}, window, 0.8, room, 0.2);
@@ -290,6 +306,7 @@ void ApartmentOptions::Check() const {
       << "scene.floor_reflectance must be in [0, 0.5], got " << floor_reflectance;
   SLAM_THROW_IF_NOT(ConfigError, relief_scale >= 0.0 && relief_scale <= 10.0)
       << "scene.relief_scale must be in [0, 10], got " << relief_scale;
+  furniture.Check();
   const bool time_ok = living_lamp_on_from.size() == 5 && living_lamp_on_from[2] == ':';
   SLAM_THROW_IF_NOT(ConfigError, time_ok)
       << "scene.living_lamp_on_from must be \"HH:MM\", got \"" << living_lamp_on_from << "\"";
@@ -320,6 +337,7 @@ Scene BuildApartment(const ApartmentOptions& options) {
       Rigid3d(CameraRotationFromYawPitchRoll(kPi / 2, 5.0 * kPi / 180, 0.0), Eigen::Vector3d(1.7, 2.4, 1.3));
   s.window_world_from_camera =
       Rigid3d(CameraRotationFromYawPitchRoll(kPi, 0.0, 0.0), Eigen::Vector3d(3.2, 2.2, 1.3));
+  AddFurniture(options.furniture, &s);
   return Scene(std::move(s));
 }
 

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "slam/synthetic/furniture_layout.h"
 #include "slam/synthetic/scene.h"
 
 namespace duskmap {
@@ -36,6 +37,14 @@ struct ApartmentOptions {
   // it comes from (relief.h). 1 = plausible real heights (millimetres to
   // centimetres); 0 = every surface flat (the scene before 2026-12-02).
   double relief_scale = 1.0;
+  // Catalog furniture (furniture_layout.h); none by default.
+  FurnitureOptions furniture;
+  // The furniture drawn as textured boxes: the sofa, TV stand, bookshelves,
+  // dining and kitchen tables with their chairs, the bed, bedside table,
+  // wardrobe and dresser. False when catalog pieces stand in for them; the
+  // fittings (walls, windows, doors, radiators, pictures, rugs, curtains,
+  // shelves of objects, lamps) stay either way.
+  bool box_furniture = true;
 
   void Check() const;
 };

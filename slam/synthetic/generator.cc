@@ -1,9 +1,12 @@
 #include "slam/synthetic/generator.h"
 
+#include <set>
+
 #include <atomic>
 #include <exception>
 #include <fstream>
 #include <mutex>
+#include <set>
 #include <thread>
 
 #include <nlohmann/json.hpp>
@@ -141,6 +144,12 @@ GenerateSummary GenerateDataset(const GeneratorConfig& config, const GenerateOpt
 
   DatasetManifest manifest;
   for (const SessionSpec& s : config.sessions) manifest.sessions.push_back({s.name, s.name, s.clock_time, s.role});
+  std::set<std::string> credited;
+  for (const SceneMesh& mesh : scene.meshes) {
+    const std::string source = mesh.catalog + "#" + mesh.model_id;
+    if (!credited.insert(source).second) continue;
+    manifest.assets.push_back({mesh.name, source, mesh.creator, mesh.license});
+  }
   WriteManifest(staged.staging_path(), manifest);
   if (options.preview) WritePreviews(scene, previews, staged.staging_path() + "/previews");
   staged.Commit();

@@ -1,5 +1,6 @@
 #include "slam/synthetic/generator_config.h"
 
+#include <array>
 #include <set>
 
 #include "slam/core/check.h"
@@ -7,6 +8,34 @@
 
 namespace duskmap {
 namespace {
+
+void ReadFurniture(JsonFields f, FurnitureOptions* o) {
+  f.Read("catalog", &o->catalog);
+  f.Read("max_edge_m", &o->max_edge_m);
+  if (f.Has("pieces")) {
+    const nlohmann::json& pieces = f.Raw("pieces");
+    const std::string where = f.where() + ".pieces";
+    SLAM_THROW_IF_NOT(ConfigError, pieces.is_array()) << where << ": wrong type (" << pieces.type_name() << ", expected an array)";
+    o->pieces.clear();
+    for (size_t i = 0; i < pieces.size(); ++i) {
+      const std::string item = where + "[" + std::to_string(i) + "]";
+      SLAM_THROW_IF_NOT(ConfigError, pieces[i].is_object())
+          << item << ": wrong type (" << pieces[i].type_name() << ", expected an object)";
+      JsonFields p(pieces[i], item);
+      FurniturePiece piece;
+      p.ReadRequired("model", &piece.model);
+      p.ReadRequired("room", &piece.room);
+      std::array<double, 2> xy = {0.0, 0.0};
+      p.ReadRequired("position_m", &xy);
+      piece.position_m = Eigen::Vector2d(xy[0], xy[1]);
+      p.Read("yaw_deg", &piece.yaw_deg);
+      p.Read("elevation_m", &piece.elevation_m);
+      p.RejectUnknown();
+      o->pieces.push_back(piece);
+    }
+  }
+  f.RejectUnknown();
+}
 
 void ReadScene(JsonFields f, ApartmentOptions* o) {
   f.Read("textures_dir", &o->textures_dir);
@@ -18,6 +47,8 @@ void ReadScene(JsonFields f, ApartmentOptions* o) {
   f.Read("window_reflectance", &o->window_reflectance);
   f.Read("floor_reflectance", &o->floor_reflectance);
   f.Read("relief_scale", &o->relief_scale);
+  f.Read("box_furniture", &o->box_furniture);
+  if (f.Has("furniture")) ReadFurniture(f.Child("furniture"), &o->furniture);
   f.RejectUnknown();
 }
 

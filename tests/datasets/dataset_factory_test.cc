@@ -142,7 +142,7 @@ TEST(OpenDataset, AllowUnorderedReachesTheTumReader) {
 TEST(OpenDataset, AllowUnorderedReachesTheSyntheticReader) {
   const std::string root = testing::MakeTempDir();
   WriteUnorderedTumFolder(root + "/1", 2);
-  WriteManifest(root, {{{"1", "1", "16:46", "mapping"}}});
+  WriteManifest(root, {{{"1", "1", "16:46", "mapping"}}, {}});
   EXPECT_THROW(OpenDataset(root), InputError);
   EXPECT_EQ(ErrorOf([&] { OpenDataset(root, "synthetic"); }),
             root + "/1/rgb.txt:4: timestamp 100.000000 is not after line 3's 101.000000 (out of "

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
@@ -335,11 +336,29 @@ TEST(TumDataset, SymlinkLoopsAreInputErrorsNamingThePath) {
   EXPECT_EQ(ErrorOf([&] { OpenTumDataset(folder); }), folder + loop_problem);
 }
 
+TEST(SyntheticDataset, ManifestCreditsItsAssetsOnlyWhenItHasAny) {
+  const fs::path root = TempRoot("synthetic_assets");
+  fs::create_directories(root);
+  const ManifestSession session{"1", "1", "16:46", "mapping"};
+  WriteManifest(root.string(), {{session}, {}});
+  std::ifstream written(root / kManifestFileName);
+  const std::string text((std::istreambuf_iterator<char>(written)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("sessions"), std::string::npos);
+  EXPECT_EQ(text.find("assets"), std::string::npos);
+  WriteManifest(root.string(), {{session}, {{"Bed", "BlendSwap-CC-0.sh3f#Blend Swap CC-0#bed1", "Someone", "Public domain"}}});
+  const DatasetManifest manifest = ReadManifest(root.string());
+  ASSERT_EQ(manifest.assets.size(), 1u);
+  EXPECT_EQ(manifest.assets[0].name, "Bed");
+  EXPECT_EQ(manifest.assets[0].source, "BlendSwap-CC-0.sh3f#Blend Swap CC-0#bed1");
+  EXPECT_EQ(manifest.assets[0].creator, "Someone");
+  EXPECT_EQ(manifest.assets[0].license, "Public domain");
+}
+
 TEST(SyntheticDataset, ManifestListsSessions) {
   const fs::path root = TempRoot("synthetic");
   WriteSession(root / "1", MakeFrames(2));
   WriteSession(root / "A", MakeFrames(3));
-  WriteManifest(root.string(), {{{"1", "1", "16:46", "mapping"}, {"A", "A", "16:51", "localization"}}});
+  WriteManifest(root.string(), {{{"1", "1", "16:46", "mapping"}, {"A", "A", "16:51", "localization"}}, {}});
   std::unique_ptr<DatasetReader> dataset = OpenSyntheticDataset(root.string());
   const std::vector<SessionInfo> sessions = dataset->Sessions();
   ASSERT_EQ(sessions.size(), 2u);
@@ -352,7 +371,7 @@ TEST(SyntheticDataset, ManifestListsSessions) {
 
 TEST(SyntheticDataset, MissingSessionFolderThrows) {
   const fs::path root = TempRoot("synthetic_missing");
-  WriteManifest(root.string(), {{{"1", "1", "16:46", "mapping"}}});
+  WriteManifest(root.string(), {{{"1", "1", "16:46", "mapping"}}, {}});
   EXPECT_THROW(OpenSyntheticDataset(root.string()), InputError);
   EXPECT_THROW(OpenSyntheticDataset((root / "nowhere").string()), InputError);
 }
@@ -360,7 +379,7 @@ TEST(SyntheticDataset, MissingSessionFolderThrows) {
 TEST(SyntheticDataset, SessionIndexFilesAreReadStrictlyUnlessAllowed) {
   const fs::path root = TempRoot("synthetic_strict");
   WriteSession(root / "1", MakeFrames(3));
-  WriteManifest(root.string(), {{{"1", "1", "16:46", "mapping"}}});
+  WriteManifest(root.string(), {{{"1", "1", "16:46", "mapping"}}, {}});
   const std::string rgb = (root / "1" / "rgb.txt").string();
   std::vector<std::string> lines = ReadLines(rgb);
   std::swap(lines[2], lines[3]);
