@@ -293,6 +293,7 @@ RuleOutcome ReductionRule(const Tables& t, TableSide side) {
   }
   int features = 0, memory_ok = 0, inliers_ok = 0, jumps_ok = 0, ate_ok = 0, ate_features = 0;
   double ratio_low = 1e9, ratio_high = -1e9;
+  std::vector<double> ratios;
   for (const std::string& feature : t.features) {
     const auto single = RowMean(t.memory, singles, feature, side);
     const auto memory = CellValue(t.memory, reduced, feature, side);
@@ -308,6 +309,7 @@ RuleOutcome ReductionRule(const Tables& t, TableSide side) {
     const double ratio = *memory / *single;
     ratio_low = std::min(ratio_low, ratio);
     ratio_high = std::max(ratio_high, ratio);
+    ratios.push_back(ratio);
     if (ratio >= 1.0 && ratio <= 2.0) ++memory_ok;
     if (*inliers_reduced < *inliers_full) ++inliers_ok;
     if (*jumps_reduced > *jumps_full) ++jumps_ok;
@@ -322,10 +324,14 @@ RuleOutcome ReductionRule(const Tables& t, TableSide side) {
     outcome.numbers = "no values";
     return outcome;
   }
-  outcome.holds = memory_ok == features && inliers_ok == features && jumps_ok == features &&
+  // The median feature's ratio: the paper's own ratios run from 1.77 to 2.18.
+  std::sort(ratios.begin(), ratios.end());
+  const double median = ratios.size() % 2 ? ratios[ratios.size() / 2]
+                                          : 0.5 * (ratios[ratios.size() / 2 - 1] + ratios[ratios.size() / 2]);
+  outcome.holds = median >= 1.0 && median <= 2.0 && inliers_ok == features && jumps_ok == features &&
                   ate_ok == ate_features;
-  outcome.numbers = reduced + " memory / mean single-session map: " + FormatFixed(ratio_low, 2) +
-                    " to " + FormatFixed(ratio_high, 2) + " (in [1, 2] for " +
+  outcome.numbers = reduced + " memory / mean single-session map: median " + FormatFixed(median, 2) +
+                    ", " + FormatFixed(ratio_low, 2) + " to " + FormatFixed(ratio_high, 2) + " (in [1, 2] for " +
                     std::to_string(memory_ok) + "/" + std::to_string(features) +
                     "); fewer inliers than " + full + ": " + std::to_string(inliers_ok) + "/" +
                     std::to_string(features) + "; larger jumps: " + std::to_string(jumps_ok) + "/" +
@@ -338,6 +344,7 @@ RuleOutcome TimingRule(const Tables& t, TableSide side) {
   RuleOutcome outcome;
   const std::vector<std::string> singles = SingleSessionRows(t.memory);
   int features = 0, detection_dominates = 0;
+  double detection_sum = 0.0, lcd_sum = 0.0, te_sum = 0.0;
   std::string fastest, smallest, fewest;
   double fastest_ms = 1e18, smallest_mb = 1e18, fewest_features = 1e18;
   bool learned = false;
@@ -348,6 +355,9 @@ RuleOutcome TimingRule(const Tables& t, TableSide side) {
     if (!detection || !lcd || !te) continue;
     ++features;
     if (*detection > *lcd && *detection > *te) ++detection_dominates;
+    detection_sum += *detection;
+    lcd_sum += *lcd;
+    te_sum += *te;
     if (*detection < fastest_ms) {
       fastest_ms = *detection;
       fastest = feature;
@@ -369,12 +379,15 @@ RuleOutcome TimingRule(const Tables& t, TableSide side) {
     return outcome;
   }
   const bool brief = std::find(t.features.begin(), t.features.end(), "BF") != t.features.end();
-  outcome.holds = detection_dominates == features &&
+  // Summed over the features: the paper's BRIEF spends more on TE (37 ms)
+  // than on detection (15 ms).
+  outcome.holds = detection_sum > lcd_sum && detection_sum > te_sum &&
                   (!brief || (fastest == "BF" && smallest == "BF")) &&
                   (!learned || fewest == "SP" || fewest == "SG");
   outcome.numbers =
-      "detection the largest stage for " + std::to_string(detection_dominates) + "/" +
-      std::to_string(features) + " features; fastest detection: " + fastest + " " +
+      "detection, LCD, TE summed over the features: " + FormatFixed(detection_sum, 0) + ", " +
+      FormatFixed(lcd_sum, 0) + ", " + FormatFixed(te_sum, 0) + " ms (detection the largest stage for " +
+      std::to_string(detection_dominates) + "/" + std::to_string(features) + "); fastest detection: " + fastest + " " +
       FormatFixed(fastest_ms, 1) + " ms; smallest single-map memory: " +
       (smallest.empty() ? "-" : smallest + " " + FormatFixed(smallest_mb, 1) + " MB") +
       "; fewest features per frame: " + (fewest.empty() ? "-" : fewest);
@@ -444,12 +457,14 @@ std::vector<FindingRule> Rules() {
        "feature",
        LcdGrowthRule, true, ""},
       {"Graph reduction cuts memory",
-       "the reduced map needs 1-2x the mean single-session map's memory, with fewer inliers, "
-       "larger jumps and larger ATE than the merge of the same sessions, for every feature",
+       "the reduced map needs 1-2x the mean single-session map's memory (the median feature), "
+       "with fewer inliers, larger jumps and larger ATE than the merge of the same sessions for "
+       "every feature",
        ReductionRule, true, ""},
       {"Feature detection dominates per-frame time",
-       "detection takes longer than LCD and than TE for every feature; BF has the fastest "
-       "detection and the smallest single-map memory; when SP ran, it has the fewest features",
+       "detection, summed over the features, takes longer than LCD and than TE; BF has the "
+       "fastest detection and the smallest single-map memory; when SP ran, it has the fewest "
+       "features",
        TimingRule, true, ""},
       {"With 30 min between consecutive mapping sessions",
        "at 30 min, the largest gap of SU, SI, KA and DY is below the smallest of BF and BK (the "
