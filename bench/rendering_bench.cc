@@ -5,12 +5,14 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include <benchmark/benchmark.h>
 
 #include "slam/io/tum_writer.h"
 #include "slam/synthetic/apartment.h"
+#include "slam/synthetic/furniture_catalog.h"
 #include "slam/synthetic/generator_config.h"
 #include "slam/synthetic/route.h"
 #include "slam/synthetic/session_simulator.h"
@@ -29,8 +31,29 @@ Fixture& Shared() {
   return fixture;
 }
 
+// The apartment furnished with catalog models
+// (configs/sunset_apartment_furnished.json); null when the catalog is not
+// installed.
+const Fixture* Furnished() {
+  static const std::unique_ptr<Fixture> fixture = []() -> std::unique_ptr<Fixture> {
+    if (!std::filesystem::exists(DefaultFurnitureCatalogPath())) return nullptr;
+    auto f = std::make_unique<Fixture>();
+    f->config = ReadGeneratorConfig(std::string(DUSKMAP_SOURCE_DIR) + "/configs/sunset_apartment_furnished.json");
+    f->scene = BuildApartment(f->config.scene);
+    return f;
+  }();
+  return fixture.get();
+}
+
+// Argument: 0 = the default apartment (box furniture), 1 = furnished with
+// catalog meshes.
 void BM_RenderFrame640x480(benchmark::State& state) {
-  Fixture& f = Shared();
+  const Fixture* furnished = state.range(0) ? Furnished() : nullptr;
+  if (state.range(0) && furnished == nullptr) {
+    state.SkipWithError("sweethome3d-furniture not installed: run scripts/setup.sh");
+    return;
+  }
+  const Fixture& f = furnished ? *furnished : Shared();
   SessionSimulator simulator(f.config, f.scene, 17.0, 1);
   RenderedView view;
   size_t k = 0;
@@ -40,7 +63,7 @@ void BM_RenderFrame640x480(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations());
 }
-BENCHMARK(BM_RenderFrame640x480)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RenderFrame640x480)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 void BM_CaptureFrame640x480(benchmark::State& state) {
   Fixture& f = Shared();
@@ -80,8 +103,7 @@ void BM_CaptureAndWriteFrame640x480(benchmark::State& state) {
 BENCHMARK(BM_CaptureAndWriteFrame640x480)->Unit(benchmark::kMillisecond);
 
 // Argument: 1 = the default scene (materials with relief), 0 = every surface
-// flat (what the relief costs: the light maps' irradiance vectors and the
-// per-texel shading normal).
+// flat, 2 = furnished with catalog meshes (their vertices lit too).
 void BM_PrepareLighting(benchmark::State& state) {
   Fixture& f = Shared();
   static const Scene flat = [] {
@@ -89,14 +111,18 @@ void BM_PrepareLighting(benchmark::State& state) {
     options.relief_scale = 0.0;
     return BuildApartment(options);
   }();
-  const Scene& scene = state.range(0) ? f.scene : flat;
+  if (state.range(0) == 2 && Furnished() == nullptr) {
+    state.SkipWithError("sweethome3d-furniture not installed: run scripts/setup.sh");
+    return;
+  }
+  const Scene& scene = state.range(0) == 2 ? Furnished()->scene : state.range(0) ? f.scene : flat;
   for (auto _ : state) {
     const SessionLighting lighting = ComputeSessionLighting(f.config.lighting, scene, 16.8);
-    std::vector<cv::Mat> radiance = PrepareRadiance(scene, lighting, f.config.lighting);
-    benchmark::DoNotOptimize(radiance.data());
+    SessionRadiance radiance = PrepareSessionRadiance(scene, lighting, f.config.lighting);
+    benchmark::DoNotOptimize(radiance.quads.data());
   }
 }
-BENCHMARK(BM_PrepareLighting)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK(BM_PrepareLighting)->Arg(1)->Arg(0)->Arg(2)->Unit(benchmark::kMillisecond)->Iterations(2);
 
 }  // namespace
 }  // namespace duskmap
