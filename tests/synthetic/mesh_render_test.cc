@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "small_camera.h"
+
 #include "slam/core/check.h"
 #include "slam/synthetic/lighting.h"
 #include "slam/synthetic/renderer.h"
@@ -12,16 +14,6 @@
 
 namespace duskmap {
 namespace {
-
-PinholeCamera SmallCamera() {
-  PinholeCamera c;
-  c.width = 160;
-  c.height = 120;
-  c.fx = c.fy = 131.25;
-  c.cx = 79.5;
-  c.cy = 59.5;
-  return c;
-}
 
 // A square of `size_m` in the furniture frame's x-z plane (y = 0), facing
 // -y, as two triangles, textured with `texture` (may be empty).

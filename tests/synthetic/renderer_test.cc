@@ -2,22 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include "small_camera.h"
+
 #include "slam/synthetic/apartment.h"
 #include "slam/synthetic/lighting.h"
 #include "slam/synthetic/route.h"
 
 namespace duskmap {
 namespace {
-
-PinholeCamera SmallCamera() {
-  PinholeCamera c;
-  c.width = 160;
-  c.height = 120;
-  c.fx = c.fy = 131.25;
-  c.cx = 79.5;
-  c.cy = 59.5;
-  return c;
-}
 
 class RendererTest : public ::testing::Test {
  protected:
