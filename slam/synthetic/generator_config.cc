@@ -15,7 +15,8 @@ void ReadFurniture(JsonFields f, FurnitureOptions* o) {
   if (f.Has("pieces")) {
     const nlohmann::json& pieces = f.Raw("pieces");
     const std::string where = f.where() + ".pieces";
-    SLAM_THROW_IF_NOT(ConfigError, pieces.is_array()) << where << ": wrong type (" << pieces.type_name() << ", expected an array)";
+    SLAM_THROW_IF_NOT(ConfigError, pieces.is_array())
+        << where << ": wrong type (" << pieces.type_name() << ", expected an array)";
     o->pieces.clear();
     for (size_t i = 0; i < pieces.size(); ++i) {
       const std::string item = where + "[" + std::to_string(i) + "]";
