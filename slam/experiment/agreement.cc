@@ -109,6 +109,16 @@ std::string OptionalNumber(const std::optional<double>& value, int decimals) {
   return value ? FormatFixed(*value, decimals) : "–";
 }
 
+// Text for a Markdown table cell: '|' (as in the map label 1|2|3) escaped.
+std::string Cell(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '|') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
 nlohmann::json OptionalJson(const std::optional<double>& value) {
   return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
 }
@@ -200,10 +210,10 @@ std::string AgreementToMarkdown(const AgreementReport& agreement) {
       << "| --- | --- | ---: | ---: | --- | --- |\n";
   for (const TableDeviation& d : agreement.deviations) {
     const int decimals = d.unit == "m" ? 2 : 1;
-    out << "| " << d.name << " | " << d.unit << " | " << d.cells << " | "
+    out << "| " << Cell(d.name) << " | " << d.unit << " | " << d.cells << " | "
         << OptionalNumber(d.mean_abs_deviation, decimals) << " | "
         << (d.max_abs_deviation
-                ? FormatFixed(*d.max_abs_deviation, decimals) + " (" + d.worst_cell + ")"
+                ? FormatFixed(*d.max_abs_deviation, decimals) + " (" + Cell(d.worst_cell) + ")"
                 : "–")
         << " | " << AgreementRoleName(d.role) << " |\n";
   }
@@ -239,8 +249,9 @@ std::string AgreementToMarkdown(const AgreementReport& agreement) {
       << "| finding | rule | measured | verdict | the rule on the paper's numbers |\n"
       << "| --- | --- | --- | --- | --- |\n";
   for (const FindingCheck& f : agreement.findings) {
-    out << "| " << f.finding << " | " << (f.criterion.empty() ? "–" : f.criterion) << " | "
-        << f.measured << " | " << FindingVerdictName(f.verdict) << " | " << f.paper << " |\n";
+    out << "| " << Cell(f.finding) << " | " << (f.criterion.empty() ? "–" : Cell(f.criterion))
+        << " | " << Cell(f.measured) << " | " << FindingVerdictName(f.verdict) << " | "
+        << Cell(f.paper) << " |\n";
   }
   return out.str();
 }

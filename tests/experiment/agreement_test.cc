@@ -171,6 +171,10 @@ TEST(AgreementOutput, MarkdownAndJsonCarryTheNumbers) {
       << markdown;
   EXPECT_NE(markdown.find("Spearman ρ = 0.50 over 3 features"), std::string::npos);
   EXPECT_NE(markdown.find("+6.0 points (paper +6.0)"), std::string::npos);
+  // A cell naming the closest-in-time row keeps the table's columns.
+  AgreementReport piped = agreement;
+  piped.deviations[0].worst_cell = "SU on 1|2|3: 50 (paper 60)";
+  EXPECT_NE(AgreementToMarkdown(piped).find("(SU on 1\\|2\\|3: 50 (paper 60))"), std::string::npos);
   const nlohmann::json json = AgreementToJson(agreement);
   EXPECT_EQ(json.at("deviations").at(0).at("cells"), 9);
   EXPECT_EQ(json.at("deviations").at(2).at("mean_abs_deviation"), nullptr);
