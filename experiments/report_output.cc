@@ -2,10 +2,8 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <iomanip>
 #include <iostream>
 #include <optional>
-#include <sstream>
 
 #include "slam/core/check.h"
 #include "slam/core/json_fields.h"
@@ -113,13 +111,7 @@ int WriteExperimentReport(const ReportRequest& request) {
     const TableDeviation* single = agreement.FindDeviation(kDeviationSingleMaps);
     const TableDeviation* multi = agreement.FindDeviation(kDeviationMultiMaps);
     const auto number = [](const std::optional<double>& value, int decimals) {
-      std::ostringstream out;
-      if (value) {
-        out << std::fixed << std::setprecision(decimals) << *value;
-      } else {
-        out << "-";
-      }
-      return out.str();
+      return value ? FormatFixed(*value, decimals) : std::string("-");
     };
     std::cout << "agreement with the paper: single-session maps deviate by "
               << number(single->mean_abs_deviation, 1) << " points, multi-session maps by "

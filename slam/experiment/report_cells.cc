@@ -1,15 +1,6 @@
 #include "slam/experiment/report_cells.h"
 
-#include <iomanip>
-#include <sstream>
-
 namespace duskmap {
-
-std::string FormatFixed(double value, int decimals) {
-  std::ostringstream out;
-  out << std::fixed << std::setprecision(decimals) << value;
-  return out.str();
-}
 
 std::string FormatSigned(double value, int decimals) {
   return (value >= 0.0 ? "+" : "") + FormatFixed(value, decimals);

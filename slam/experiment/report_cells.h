@@ -33,7 +33,7 @@ std::vector<std::string> PaperColumns(const ReportTable* table);
 std::optional<double> RowMean(const ReportTable* table, const std::vector<std::string>& rows,
                               const std::string& column, TableSide side);
 
-std::string FormatFixed(double value, int decimals);
-std::string FormatSigned(double value, int decimals);  // "+1.5", "-0.3"
+// FormatFixed (report_table.h) with the sign: "+1.5", "-0.3".
+std::string FormatSigned(double value, int decimals);
 
 }  // namespace duskmap

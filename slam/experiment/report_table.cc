@@ -9,12 +9,6 @@
 namespace duskmap {
 namespace {
 
-std::string FormatNumber(double value, int decimals) {
-  std::ostringstream out;
-  out << std::fixed << std::setprecision(decimals) << value;
-  return out.str();
-}
-
 std::string EscapeLatex(const std::string& text) {
   std::string out;
   for (char c : text) {
@@ -31,6 +25,12 @@ std::string EscapeLatex(const std::string& text) {
 }
 
 }  // namespace
+
+std::string FormatFixed(double value, int decimals) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(decimals) << value;
+  return out.str();
+}
 
 ReportTable::ReportTable(std::string id, std::string caption, std::vector<std::string> rows,
                          std::vector<std::string> columns, int decimals)
@@ -74,9 +74,9 @@ const TableCell& ReportTable::At(const std::string& row, const std::string& colu
 }
 
 std::string ReportTable::FormatCell(const TableCell& cell, bool latex) const {
-  std::string text = cell.measured ? FormatNumber(*cell.measured, decimals_) : "–";
+  std::string text = cell.measured ? FormatFixed(*cell.measured, decimals_) : "–";
   if (latex && !cell.measured) text = "--";
-  if (cell.paper) text += " (" + FormatNumber(*cell.paper, decimals_) + ")";
+  if (cell.paper) text += " (" + FormatFixed(*cell.paper, decimals_) + ")";
   return text;
 }
 
@@ -106,8 +106,8 @@ std::string ReportTable::ToCsv() const {
     for (size_t c = 0; c < columns_.size(); ++c) {
       const TableCell& cell = cells_[r * columns_.size() + c];
       out << '"' << rows_[r] << "\"," << columns_[c] << ","
-          << (cell.measured ? FormatNumber(*cell.measured, decimals_ + 2) : "") << ","
-          << (cell.paper ? FormatNumber(*cell.paper, decimals_ + 2) : "") << "\n";
+          << (cell.measured ? FormatFixed(*cell.measured, decimals_ + 2) : "") << ","
+          << (cell.paper ? FormatFixed(*cell.paper, decimals_ + 2) : "") << "\n";
     }
   }
   return out.str();

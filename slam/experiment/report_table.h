@@ -14,6 +14,10 @@ struct TableCell {
   std::optional<double> paper;
 };
 
+// `value` with `decimals` digits after the point ("12.3"), as the tables
+// print their cells.
+std::string FormatFixed(double value, int decimals);
+
 class ReportTable {
  public:
   // `id` names the table for code that reads it back (report_table_ids.h);
