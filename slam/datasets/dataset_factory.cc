@@ -10,6 +10,7 @@
 #include "slam/datasets/rtabmap_db_reader.h"
 #include "slam/datasets/rtabmap_images_reader.h"
 #include "slam/datasets/skipping_session_reader.h"
+#include "slam/io/path_status.h"
 #include "slam/io/synthetic_dataset.h"
 #include "slam/io/tum_dataset.h"
 
@@ -18,16 +19,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The status of `path` (following symlinks); a missing path gives
-// file_type::not_found. Any other failure (a symlink loop, no permission)
-// throws InputError "<path>: <problem>".
-fs::file_status StatusOf(const fs::path& path) {
-  std::error_code error;
-  const fs::file_status status = fs::status(path, error);
-  SLAM_THROW_IF_NOT(InputError, !error || status.type() == fs::file_type::not_found)
-      << path.string() << ": " << error.message();
-  return status;
-}
+fs::file_status StatusOf(const fs::path& path) { return PathStatus(path); }
 
 bool IsRegularFile(const fs::path& path) {
   return StatusOf(path).type() == fs::file_type::regular;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <utility>
 
 #include <opencv2/imgcodecs.hpp>
@@ -50,51 +51,12 @@ void CheckComplete(const uint8_t* data, size_t size, BlobCodec codec, const std:
 // and the decoder would allocate it (found by fuzzing: a 3-kB blob declaring
 // 2.6 GB of pixels).
 
-uint32_t ReadBigEndian(const uint8_t* p, int bytes) {
-  uint32_t value = 0;
-  for (int i = 0; i < bytes; ++i) value = (value << 8) | p[i];
-  return value;
-}
-
-// Width and height the header declares (PNG IHDR, JPEG SOFn); {0, 0} when
-// the header does not say (the decoder then rejects the blob itself).
-std::pair<int64_t, int64_t> DeclaredSize(const uint8_t* data, size_t size, BlobCodec codec) {
-  if (codec == BlobCodec::kPng) {
-    if (size < 24 || std::memcmp(data + 12, "IHDR", 4) != 0) return {0, 0};
-    return {ReadBigEndian(data + 16, 4), ReadBigEndian(data + 20, 4)};
-  }
-  if (codec != BlobCodec::kJpeg) return {0, 0};
-  size_t i = 2;
-  while (i + 4 <= size) {
-    if (data[i] != 0xFF) return {0, 0};
-    const uint8_t marker = data[i + 1];
-    if (marker == 0xFF) {  // fill byte
-      ++i;
-      continue;
-    }
-    if (marker == 0x01 || (marker >= 0xD0 && marker <= 0xD7)) {  // no length
-      i += 2;
-      continue;
-    }
-    const uint32_t length = ReadBigEndian(data + i + 2, 2);
-    const bool start_of_frame = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 &&
-                                marker != 0xC8 && marker != 0xCC;
-    if (start_of_frame) {
-      if (i + 9 > size || length < 7) return {0, 0};
-      return {ReadBigEndian(data + i + 7, 2), ReadBigEndian(data + i + 5, 2)};
-    }
-    if (marker == 0xDA || length < 2) return {0, 0};  // scan data before any frame header
-    i += 2 + length;
-  }
-  return {0, 0};
-}
-
 cv::Mat Decode(const uint8_t* data, size_t size, BlobCodec codec, const std::string& where) {
   CheckComplete(data, size, codec, where);
-  const auto [width, height] = DeclaredSize(data, size, codec);
-  SLAM_THROW_IF_NOT(InputError, width * height <= kMaxImagePixels)
-      << where << ": " << CodecName(codec) << " declares " << width << "x" << height
-      << " pixels, more than the " << kMaxImagePixels << "-pixel limit";
+  const std::optional<ImageHeaderSize> declared = ReadImageHeaderSize(data, size);
+  SLAM_THROW_IF_NOT(InputError, !declared || WithinPixelLimit(*declared))
+      << where << ": " << CodecName(codec) << " declares " << declared->width << "x"
+      << declared->height << " pixels, more than the " << kMaxImagePixels << "-pixel limit";
   const cv::Mat buffer(1, static_cast<int>(size), CV_8UC1, const_cast<uint8_t*>(data));
   cv::Mat image;
   try {

@@ -13,6 +13,7 @@
 #include "slam/datasets/frame_assembly.h"
 #include "slam/datasets/image_blob.h"
 #include "slam/datasets/poses_file.h"
+#include "slam/io/path_status.h"
 
 namespace duskmap {
 namespace {
@@ -66,18 +67,11 @@ ImageSessionLayout ExportLayout(const fs::path& folder, const std::string& prefi
   return layout;
 }
 
-std::vector<fs::path> SortedEntries(const fs::path& folder) {
-  std::vector<fs::path> entries;
-  for (const auto& entry : fs::directory_iterator(folder)) entries.push_back(entry.path());
-  std::sort(entries.begin(), entries.end());
-  return entries;
-}
-
 // Pose lines by the text that names their image: the stamp and the id.
 std::map<std::string, PoseLine> IndexPoses(const std::string& path,
                                               const DatasetReadOptions& options) {
   std::map<std::string, PoseLine> index;
-  if (!fs::exists(path)) return index;
+  if (!PathExists(path)) return index;
   const PosesFile file = ReadPosesFile(path);
   for (const BadPoseLine& bad : file.bad_lines) {
     ReportBadFrame(options, path + ":" + std::to_string(bad.line) + ": " + bad.problem);
@@ -117,9 +111,9 @@ std::string ResolveFrame(const ImageSessionLayout& layout,
                          const std::map<std::string, PoseLine>& camera, ImageFrame* frame) {
   const PoseLine* device_pose = FindPose(device, frame->stem);
   const PoseLine* camera_pose = FindPose(camera, frame->stem);
-  const std::string pose_file = device_pose || fs::exists(layout.device_poses)
+  const std::string pose_file = device_pose || PathExists(layout.device_poses)
                                     ? layout.device_poses : layout.camera_poses;
-  if (!device_pose && (fs::exists(layout.device_poses) || !camera_pose)) {
+  if (!device_pose && (PathExists(layout.device_poses) || !camera_pose)) {
     return frame->rgb_path + ": no pose line for this image in " + pose_file;
   }
   if (device_pose) {
@@ -136,15 +130,15 @@ std::string ResolveFrame(const ImageSessionLayout& layout,
 }
 
 ImageSession IndexSession(const ImageSessionLayout& layout, const DatasetReadOptions& options) {
-  SLAM_THROW_IF_NOT(InputError, fs::is_directory(layout.calib_dir))
+  SLAM_THROW_IF_NOT(InputError, IsDirectoryPath(layout.calib_dir))
       << layout.calib_dir << ": calibration folder not found";
-  SLAM_THROW_IF_NOT(InputError, fs::exists(layout.device_poses) || fs::exists(layout.camera_poses))
+  SLAM_THROW_IF_NOT(InputError, PathExists(layout.device_poses) || PathExists(layout.camera_poses))
       << layout.device_poses << ": pose file not found (nor " << layout.camera_poses << ")";
   const auto device = IndexPoses(layout.device_poses, options);
   const auto camera = IndexPoses(layout.camera_poses, options);
   ImageSession session;
   session.layout = layout;
-  for (const fs::path& entry : SortedEntries(layout.rgb_dir)) {
+  for (const fs::path& entry : SortedFolderEntries(layout.rgb_dir)) {
     const std::string extension = entry.extension().string();
     if (extension != ".jpg" && extension != ".jpeg" && extension != ".png") continue;
     ImageFrame frame;
@@ -191,7 +185,7 @@ class ImageSessionReader : public SessionReader {
     const cv::Mat bgr = DecodeColorBlob(reinterpret_cast<const uint8_t*>(rgb.data()), rgb.size(),
                                         image.rgb_path);
     cv::Mat depth_m;
-    if (fs::is_directory(layout.depth_dir)) {
+    if (IsDirectoryPath(layout.depth_dir)) {
       const std::string depth_path = (fs::path(layout.depth_dir) / (image.stem + ".png")).string();
       const std::string depth = ReadFileBytes(depth_path);
       depth_m = DecodeDepthBlob(reinterpret_cast<const uint8_t*>(depth.data()), depth.size(),
@@ -238,16 +232,16 @@ class ImageDatasetReader : public DatasetReader {
 
 std::vector<ImageSessionLayout> FindImageSessions(const std::string& path) {
   const fs::path folder(path);
-  if (!fs::is_directory(folder)) return {};
-  if (fs::is_directory(folder / "rgb")) return {ReleaseLayout(folder)};
+  if (!IsDirectoryPath(folder)) return {};
+  if (IsDirectoryPath(folder / "rgb")) return {ReleaseLayout(folder)};
   std::vector<ImageSessionLayout> sessions;
   const std::string suffix = "_rgb";
-  for (const fs::path& entry : SortedEntries(folder)) {
+  for (const fs::path& entry : SortedFolderEntries(folder)) {
     const std::string name = entry.filename().string();
-    if (!fs::is_directory(entry)) continue;
+    if (!IsDirectoryPath(entry)) continue;
     if (name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0) {
       sessions.push_back(ExportLayout(folder, name.substr(0, name.size() - suffix.size())));
-    } else if (fs::is_directory(entry / "rgb")) {
+    } else if (IsDirectoryPath(entry / "rgb")) {
       sessions.push_back(ReleaseLayout(entry));
     }
   }

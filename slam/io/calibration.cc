@@ -31,7 +31,11 @@ TumCalibration ReadCalibration(const std::string& path) {
     throw InputError(e.what());
   }
   SLAM_THROW_IF_NOT(InputError, c.camera.IsValid()) << path << ": invalid intrinsics";
-  SLAM_THROW_IF_NOT(InputError, c.depth_scale > 0.0) << path << ": depth_scale must be > 0";
+  // Raw 16-bit depth units per metre: 1000 (millimetres) and 5000 (TUM) are
+  // usual; below 1 a unit is over a metre, above 1e5 the range is under 0.66 m.
+  SLAM_THROW_IF_NOT(InputError, c.depth_scale >= kMinDepthScale && c.depth_scale <= kMaxDepthScale)
+      << path << ": depth_scale must be in [1, 100000] raw units per metre (1000 = millimetres), got "
+      << c.depth_scale;
   return c;
 }
 

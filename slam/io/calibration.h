@@ -15,6 +15,10 @@ struct TumCalibration {
   double depth_scale = 5000.0;  // raw depth units per metre
 };
 
+// The depth_scale range ReadCalibration accepts.
+inline constexpr double kMinDepthScale = 1.0;
+inline constexpr double kMaxDepthScale = 100000.0;
+
 inline constexpr const char* kCalibrationFileName = "calibration.json";
 
 // Reads calibration.json; throws InputError naming the file and the problem.

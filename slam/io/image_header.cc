@@ -102,6 +102,11 @@ std::optional<ImageHeaderSize> JpegSize(const ReadAt& read) {
 
 }  // namespace
 
+bool WithinPixelLimit(const ImageHeaderSize& size) {
+  return size.width >= 0 && size.height >= 0 && size.width <= kMaxImagePixels &&
+         size.height <= kMaxImagePixels && size.width * size.height <= kMaxImagePixels;
+}
+
 std::optional<ImageHeaderSize> ReadImageHeaderSize(const uint8_t* data, size_t size) {
   if (IsPng(data, size)) return PngSize(data, size);
   if (IsPnm(data, size)) return PnmSize(data, size);
@@ -135,11 +140,19 @@ std::optional<ImageHeaderSize> ReadImageFileHeaderSize(const std::string& path) 
 }
 
 void CheckImageFilePixelLimit(const std::string& path) {
+  {
+    std::ifstream in(path, std::ios::binary);
+    uint8_t magic[8] = {};
+    in.read(reinterpret_cast<char*>(magic), sizeof(magic));
+    const size_t got = static_cast<size_t>(in.gcount());
+    // Other formats (TIFF, BMP, WebP, EXR, ...) would reach a decoder whose
+    // allocation nothing checked first; they are refused by name instead.
+    SLAM_THROW_IF_NOT(InputError, got < 3 || IsPng(magic, got) || IsJpeg(magic, got) || IsPnm(magic, got))
+        << path << ": not a PNG, JPEG or PNM image (only these are read: their size is checked before decoding)";
+  }
   const std::optional<ImageHeaderSize> size = ReadImageFileHeaderSize(path);
   if (!size) return;
-  // Sides are checked first so that the product cannot overflow.
-  SLAM_THROW_IF_NOT(InputError, size->width <= kMaxImagePixels && size->height <= kMaxImagePixels &&
-                                    size->width * size->height <= kMaxImagePixels)
+  SLAM_THROW_IF_NOT(InputError, WithinPixelLimit(*size))
       << path << ": " << size->width << "x" << size->height << " image exceeds the "
       << (kMaxImagePixels >> 20) << "-Mpixel limit";
 }

@@ -21,6 +21,11 @@ struct ImageHeaderSize {
   int64_t height = 0;
 };
 
+// True when width x height is at most kMaxImagePixels; sides are compared
+// first, so that any declared size (PNG allows 2^31 - 1 per side) is judged
+// without overflowing the product.
+bool WithinPixelLimit(const ImageHeaderSize& size);
+
 // The width and height declared by the header of a PNG, JPEG or PNM image in
 // `data`; nullopt when the bytes are none of these, or the header is cut
 // short or does not say (the decoder then judges the file itself).
@@ -32,8 +37,10 @@ std::optional<ImageHeaderSize> ReadImageHeaderSize(const uint8_t* data, size_t s
 std::optional<ImageHeaderSize> ReadImageFileHeaderSize(const std::string& path);
 
 // Throws InputError "<path>: <w>x<h> image exceeds the 64-Mpixel limit" when
-// the file's header declares more than kMaxImagePixels pixels; does nothing
-// for smaller images and for files whose size the header does not give.
+// the file's header declares more than kMaxImagePixels pixels, and "<path>:
+// not a PNG, JPEG or PNM image ..." when the file (3 bytes or more) is another
+// format; does nothing for smaller images and for files whose size the header
+// does not give (missing, cut short: the decoder then refuses them).
 void CheckImageFilePixelLimit(const std::string& path);
 
 }  // namespace duskmap

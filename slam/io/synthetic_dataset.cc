@@ -9,6 +9,7 @@
 
 #include "slam/core/check.h"
 #include "slam/core/json_fields.h"
+#include "slam/io/path_status.h"
 #include "slam/io/tum_dataset.h"
 
 namespace duskmap {
@@ -45,6 +46,17 @@ class SyntheticDatasetReader : public DatasetReader {
 
 }  // namespace
 
+bool IsFolderInsideDataset(const std::string& folder) {
+  const fs::path path(folder);
+  if (folder.empty() || path.is_absolute() || path.has_root_name() || path.has_root_directory()) {
+    return false;
+  }
+  for (const fs::path& part : path) {
+    if (part == "..") return false;
+  }
+  return true;
+}
+
 void WriteManifest(const std::string& dataset_path, const DatasetManifest& manifest) {
   nlohmann::json sessions = nlohmann::json::array();
   for (const ManifestSession& s : manifest.sessions) {
@@ -68,11 +80,8 @@ void WriteManifest(const std::string& dataset_path, const DatasetManifest& manif
 
 DatasetManifest ReadManifest(const std::string& dataset_path) {
   const std::string path = dataset_path + "/" + kManifestFileName;
-  std::error_code error;
-  const fs::file_status status = fs::status(path, error);
   // A symlink loop or a permission problem is named as such, not as "missing".
-  SLAM_THROW_IF_NOT(InputError, !error || status.type() == fs::file_type::not_found)
-      << path << ": " << error.message();
+  const fs::file_status status = PathStatus(path);
   SLAM_THROW_IF_NOT(InputError, status.type() == fs::file_type::regular)
       << path << ": missing (not a duskmap synthetic dataset)";
   DatasetManifest manifest;
@@ -96,6 +105,9 @@ DatasetManifest ReadManifest(const std::string& dataset_path) {
       s.Read("clock_time", &session.clock_time);
       s.Read("role", &session.role);
       s.RejectUnknown();
+      SLAM_THROW_IF_NOT(InputError, IsFolderInsideDataset(session.folder))
+          << path << ": session '" << session.name << "' folder '" << session.folder
+          << "' must be a relative path inside the dataset (no '..', not absolute)";
       SLAM_THROW_IF_NOT(InputError, names.insert(session.name).second)
           << path << ": duplicate session '" << session.name << "'";
       manifest.sessions.push_back(session);

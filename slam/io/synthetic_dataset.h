@@ -41,6 +41,10 @@ struct DatasetManifest {
   std::vector<ManifestAsset> assets;  // written only when there are any
 };
 
+// True when a manifest's session folder stays inside the dataset: relative,
+// non-empty, without a ".." component ("1", "sessions/1"; not "../x", "/tmp").
+bool IsFolderInsideDataset(const std::string& folder);
+
 void WriteManifest(const std::string& dataset_path, const DatasetManifest& manifest);
 // Throws InputError naming manifest.json and the problem.
 DatasetManifest ReadManifest(const std::string& dataset_path);

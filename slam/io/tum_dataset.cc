@@ -11,6 +11,7 @@
 
 #include "slam/core/check.h"
 #include "slam/io/image_header.h"
+#include "slam/io/path_status.h"
 #include "slam/io/trajectory_io.h"
 #include "slam/io/tum_writer.h"
 
@@ -31,16 +32,7 @@ struct IndexEntry {
   int line = 0;       // 1-based line number in the index file
 };
 
-// The status of `path` (following symlinks); a missing path gives
-// file_type::not_found. Any other failure (a symlink loop, no permission)
-// throws InputError "<path>: <problem>" instead of std::filesystem's error.
-fs::file_status StatusOf(const std::string& path) {
-  std::error_code error;
-  const fs::file_status status = fs::status(path, error);
-  SLAM_THROW_IF_NOT(InputError, !error || status.type() == fs::file_type::not_found)
-      << path << ": " << error.message();
-  return status;
-}
+fs::file_status StatusOf(const std::string& path) { return PathStatus(path); }
 
 std::vector<IndexEntry> ReadIndex(const std::string& folder, const std::string& name,
                                   const TumReadOptions& options) {

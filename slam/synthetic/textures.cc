@@ -9,6 +9,7 @@
 
 #include "slam/core/check.h"
 #include "slam/core/random.h"
+#include "slam/io/image_header.h"
 #include "slam/synthetic/relief.h"
 
 namespace duskmap {
@@ -551,6 +552,7 @@ std::vector<cv::Mat> LoadUserTextures(const std::string& folder) {
   std::sort(paths.begin(), paths.end());
   std::vector<cv::Mat> images;
   for (const std::string& path : paths) {
+    CheckImageFilePixelLimit(path);  // before the decoder allocates what the header declares
     cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
     if (!image.empty()) images.push_back(image);
   }

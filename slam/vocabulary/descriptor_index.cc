@@ -9,6 +9,7 @@
 #include "slam/core/byte_buffer.h"
 #include "slam/core/check.h"
 #include "slam/core/random.h"
+#include "slam/features/binary_distance.h"
 #include "slam/vocabulary/kd_forest.h"
 
 namespace duskmap {
@@ -280,6 +281,19 @@ void DescriptorIndexOptions::Check() const {
       << "DescriptorIndexOptions.hierarchical_leaf_size must be >= 1, got " << hierarchical_leaf_size;
 }
 
+// The Hamming distance over every byte of a row, for FLANN's hierarchical
+// index: flann::Hamming<unsigned char> reads rows as 8-byte blocks and leaves
+// the bytes after the last whole block out (the last 5 bytes of a 61-byte
+// AKAZE row would never count).
+struct WholeRowHamming {
+  typedef unsigned char ElementType;
+  typedef unsigned int ResultType;
+  template <typename Iterator1, typename Iterator2>
+  ResultType operator()(Iterator1 a, Iterator2 b, size_t size, ResultType /*worst*/ = 0) const {
+    return HammingDistance(&a[0], &b[0], static_cast<int>(size));
+  }
+};
+
 // Owns the rows and the index over them: KdForest (KD-tree kinds), LshTables
 // (LSH), FLANN (hierarchical: FLANN keeps pointers to the rows) or a linear
 // scan.
@@ -482,7 +496,7 @@ class DescriptorIndex::Backend {
     const uint32_t seed = options_.seed;
     switch (index_kind_) {
       case IndexKind::kHierarchical:
-        return std::make_unique<FlannHolderT<flann::Hamming<unsigned char>>>(
+        return std::make_unique<FlannHolderT<WholeRowHamming>>(
             flann::HierarchicalClusteringIndexParams(options_.hierarchical_branching,
                                                      flann::FLANN_CENTERS_RANDOM,
                                                      options_.hierarchical_trees,

@@ -74,6 +74,12 @@ TEST(DecodeColorBlob, RefusesImagesDeclaringMoreThanTheLimit) {
   jpeg[sof + 8] = 0x50;
   EXPECT_EQ(ErrorOf([&] { DecodeColorBlob(jpeg.data(), jpeg.size(), "x"); }),
             "x: JPEG declares 50000x50000 pixels, more than the 67108864-pixel limit");
+  // The largest sides a PNG header can hold: judged without overflowing.
+  const uint8_t widest[4] = {0xFF, 0xFF, 0xFF, 0xFF};
+  std::memcpy(png.data() + 16, widest, 4);
+  std::memcpy(png.data() + 20, widest, 4);
+  EXPECT_EQ(ErrorOf([&] { DecodeColorBlob(png.data(), png.size(), "x"); }),
+            "x: PNG declares 4294967295x4294967295 pixels, more than the 67108864-pixel limit");
   // Images within the limit still decode.
   const std::vector<uint8_t> fine = Encode(".jpg", cv::Mat(8, 8, CV_8UC3, cv::Scalar::all(5)));
   EXPECT_EQ(DecodeColorBlob(fine.data(), fine.size(), "x").size(), cv::Size(8, 8));

@@ -91,6 +91,25 @@ TEST_F(RtabmapImagesFixture, ReleaseLayoutSessionIsNamedAfterItsFolder) {
   EXPECT_EQ(parent->Sessions()[0].name, "A");
 }
 
+// A folder that turns into a symlink loop after opening is named in a
+// one-line InputError by Next(), not std::filesystem's exception text.
+TEST_F(RtabmapImagesFixture, SymlinkLoopMetByNextIsAnInputError) {
+  const std::string session = MakeReleaseLayout("loop");
+  const auto reader = OpenRtabmapImages(session);
+  const std::unique_ptr<SessionReader> frames = reader->OpenSession("loop");
+  ASSERT_TRUE(frames->Next().has_value());
+  const std::string depth = session + "/depth";
+  std::filesystem::remove_all(depth);
+  std::filesystem::create_directory_symlink(depth, depth);
+  EXPECT_EQ(ErrorOf([&] { frames->Next(); }), depth + ": Too many levels of symbolic links");
+  // Opening the folder again names the same problem.
+  std::filesystem::remove(depth);
+  std::filesystem::remove_all(session + "/rgb");
+  std::filesystem::create_directory_symlink(session + "/rgb", session + "/rgb");
+  EXPECT_EQ(ErrorOf([&] { OpenRtabmapImages(session); }),
+            session + "/rgb: Too many levels of symbolic links");
+}
+
 TEST_F(RtabmapImagesFixture, OnlyCameraPosesRecoverDevicePoses) {
   const std::string session = MakeReleaseLayout("cam");
   const RgbdFrame with_device = *OpenRtabmapImages(session)->OpenSession("cam")->Next();

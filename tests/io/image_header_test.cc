@@ -125,11 +125,29 @@ TEST(ImageHeader, ReadsTheSizeOfRealEncodedImages) {
   EXPECT_NE(ErrorOf(WriteBytes("over.png", PngHeader(8192, 8193))), "");
 }
 
-TEST(ImageHeader, UnknownOrCutShortHeadersAreLeftToTheDecoder) {
+// A format whose size nothing reads first is refused by name, not decoded.
+TEST(ImageHeader, OtherFormatsAreRefusedByName) {
   const std::string bmp = TempFile("small.bmp");
   ASSERT_TRUE(cv::imwrite(bmp, cv::Mat(4, 4, CV_8UC3, cv::Scalar(1, 2, 3))));
   EXPECT_FALSE(ReadImageFileHeaderSize(bmp).has_value());
-  EXPECT_EQ(ErrorOf(bmp), "");
+  EXPECT_EQ(ErrorOf(bmp), bmp + ": not a PNG, JPEG or PNM image (only these are read: their size "
+                                "is checked before decoding)");
+  const std::string tiff = TempFile("small.tiff");
+  ASSERT_TRUE(cv::imwrite(tiff, cv::Mat(4, 4, CV_8UC3, cv::Scalar(1, 2, 3))));
+  EXPECT_NE(ErrorOf(tiff).find(": not a PNG, JPEG or PNM image"), std::string::npos);
+}
+
+// PNG sides are 32-bit: their product must not overflow before the check.
+TEST(ImageHeader, LargestDeclarableSidesAreJudgedWithoutOverflow) {
+  EXPECT_FALSE(WithinPixelLimit({0xFFFFFFFFLL, 0xFFFFFFFFLL}));
+  EXPECT_FALSE(WithinPixelLimit({1, kMaxImagePixels + 1}));
+  EXPECT_FALSE(WithinPixelLimit({-1, 4}));
+  EXPECT_TRUE(WithinPixelLimit({1, kMaxImagePixels}));
+  EXPECT_TRUE(WithinPixelLimit({0, 0}));
+  EXPECT_NE(ErrorOf(WriteBytes("widest.png", PngHeader(0xFFFFFFFFu, 0xFFFFFFFFu))), "");
+}
+
+TEST(ImageHeader, CutShortHeadersAreLeftToTheDecoder) {
   std::vector<uint8_t> png = PngHeader(20000, 20000);
   png.resize(20);  // IHDR cut short
   EXPECT_FALSE(ReadImageFileHeaderSize(WriteBytes("short.png", png)).has_value());

@@ -336,6 +336,26 @@ TEST(TumDataset, SymlinkLoopsAreInputErrorsNamingThePath) {
   EXPECT_EQ(ErrorOf([&] { OpenTumDataset(folder); }), folder + loop_problem);
 }
 
+TEST(TumCalibrationFile, DepthScaleOutsideOneToOneHundredThousandIsRefused) {
+  const fs::path root = TempRoot("calibration_scale");
+  fs::create_directories(root);
+  const std::string path = (root / kCalibrationFileName).string();
+  TumCalibration c = SmallCalibration();
+  for (const double scale : {1.0, 1000.0, 5000.0, 100000.0}) {
+    c.depth_scale = scale;
+    WriteCalibration(path, c);
+    EXPECT_EQ(ReadCalibration(path).depth_scale, scale);
+  }
+  for (const double scale : {1e-300, 0.5, 0.0, -1000.0, 1e6}) {
+    c.depth_scale = scale;
+    WriteCalibration(path, c);
+    EXPECT_NE(ErrorOf([&] { ReadCalibration(path); })
+                  .find(path + ": depth_scale must be in [1, 100000] raw units per metre"),
+              std::string::npos)
+        << scale;
+  }
+}
+
 TEST(SyntheticDataset, ManifestCreditsItsAssetsOnlyWhenItHasAny) {
   const fs::path root = TempRoot("synthetic_assets");
   fs::create_directories(root);
@@ -367,6 +387,25 @@ TEST(SyntheticDataset, ManifestListsSessions) {
   EXPECT_EQ(sessions[1].num_frames, 3);
   EXPECT_TRUE(sessions[0].has_ground_truth);
   EXPECT_THROW(dataset->OpenSession("Z"), InputError);
+}
+
+TEST(SyntheticDataset, SessionFolderOutsideTheDatasetIsRefused) {
+  EXPECT_TRUE(IsFolderInsideDataset("1"));
+  EXPECT_TRUE(IsFolderInsideDataset("sessions/1"));
+  EXPECT_TRUE(IsFolderInsideDataset("./1"));
+  EXPECT_FALSE(IsFolderInsideDataset(""));
+  EXPECT_FALSE(IsFolderInsideDataset("../x"));
+  EXPECT_FALSE(IsFolderInsideDataset("a/../../x"));
+  EXPECT_FALSE(IsFolderInsideDataset("/tmp/x"));
+  const fs::path root = TempRoot("synthetic_escape");
+  WriteSession(root / "outside", MakeFrames(2));
+  const fs::path dataset = root / "dataset";
+  fs::create_directories(dataset);
+  WriteManifest(dataset.string(), {{{"1", "../outside", "16:46", "mapping"}}, {}});
+  EXPECT_EQ(ErrorOf([&] { OpenSyntheticDataset(dataset.string()); }),
+            (dataset / kManifestFileName).string() +
+                ": session '1' folder '../outside' must be a relative path inside the dataset "
+                "(no '..', not absolute)");
 }
 
 TEST(SyntheticDataset, MissingSessionFolderThrows) {

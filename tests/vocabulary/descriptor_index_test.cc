@@ -317,6 +317,28 @@ TEST(DescriptorIndex, ByteL1KdTreeSearchesLikeTheByteL1LinearScan) {
   EXPECT_GT(found, 190);
 }
 
+// The hierarchical index counts the bits of the whole row: with 61-byte rows
+// (AKAZE) two words that differ only in the last 5 bytes are told apart, and
+// its distances equal the linear scan's.
+TEST(DescriptorIndex, HierarchicalHammingCountsTheBytesAfterTheLastWholeBlock) {
+  constexpr int kCols = 61;
+  DescriptorIndexOptions options;
+  options.binary_kind = IndexKind::kHierarchical;
+  options.checks = 100000;
+  DescriptorIndex index(options, DescriptorKind::kBinary, kCols);
+  cv::Mat rows(3, kCols, CV_8U, cv::Scalar(0));
+  rows.at<uint8_t>(1, 60) = 0xFF;  // differs from row 0 in 8 bits of byte 60
+  rows.at<uint8_t>(2, 3) = 0x01;   // differs from row 0 in 1 bit of byte 3
+  index.Add(1, rows.ptr<uint8_t>(1));
+  index.Add(2, rows.ptr<uint8_t>(2));
+  const auto found = Search(index, rows.row(0));
+  ASSERT_EQ(found[0].size(), 2u);
+  EXPECT_EQ(found[0][0].word, 2);
+  EXPECT_FLOAT_EQ(found[0][0].distance, 1.0f);
+  EXPECT_EQ(found[0][1].word, 1);
+  EXPECT_FLOAT_EQ(found[0][1].distance, 8.0f);  // FLANN's own Hamming gave 0
+}
+
 TEST(DescriptorIndexOptions, ByteL1NeedsAKdTreeOrTheLinearScan) {
   DescriptorIndexOptions options;
   options.binary_distance = BinaryDistance::kByteL1;
