@@ -6,12 +6,18 @@
 //   build-feat/bench/features_bench --benchmark_repetitions=7
 //       --benchmark_report_aggregates_only=true
 // SuperPoint is timed when DUSKMAP_SUPERPOINT_ONNX names a model file.
+// ImportH5: the h5 type reading one frame's features (1000 keypoints with
+// 128-D float32 or 32-byte binary descriptors and scores, hloc's layout) from
+// a 100-frame file, with 3D points from a 640x480 depth image.
 // SuperGlue matching of 1000 x 1000 keypoints (random 256-D descriptors,
 // 640x480 images) is timed when DUSKMAP_SUPERGLUE_ONNX names a model file,
 // e.g. one written by scripts/make_test_superglue_onnx.py (same size and
 // graph as the official weights); it runs with OpenCV's default threads
 // (CPU time is the whole process's).
+#include <unistd.h>
+
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 
 #include <benchmark/benchmark.h>
@@ -20,6 +26,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "slam/features/feature_extractor.h"
+#include "slam/features/h5_feature_file.h"
 #include "slam/features/superglue.h"
 
 namespace duskmap {
@@ -101,9 +108,55 @@ void BM_SuperGlueMatch(benchmark::State& state) {
   state.counters["matches"] = static_cast<double>(matches);
 }
 
+void BM_ImportH5(benchmark::State& state, bool binary) {
+  constexpr int kFrames = 100;
+  constexpr int kFeatures = 1000;
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("duskmap_bench_import_" + std::to_string(::getpid()) + ".h5"))
+                               .string();
+  {
+    H5FeatureFile file(path, H5FeatureFile::Mode::kCreate);
+    for (int i = 0; i < kFrames; ++i) {
+      FrameFeatures f = RandomSuperPointLike(kFeatures, 10 + i);
+      cv::Mat descriptors(kFeatures, binary ? 32 : 128, binary ? CV_8U : CV_32F);
+      cv::randu(descriptors, 0, binary ? 256 : 1);
+      file.Write("1/rgb/" + std::to_string(i) + ".png", f.keypoints, descriptors,
+                 binary ? DescriptorKind::kBinary : DescriptorKind::kFloat);
+    }
+    file.Close();
+  }
+  FeatureOptions options;
+  options.type = "h5";
+  options.h5.path = path;
+  options.h5.descriptor_kind = binary ? "binary" : "float";
+  const auto extractor = CreateFeatureExtractor(options);
+  RgbdFrame frame;
+  frame.bgr = Frame();
+  frame.depth_m = cv::Mat(480, 640, CV_32F, cv::Scalar(2.0f));
+  frame.camera.width = 640;
+  frame.camera.height = 480;
+  frame.camera.fx = frame.camera.fy = 525.0;
+  frame.camera.cx = 319.5;
+  frame.camera.cy = 239.5;
+  frame.session = "1";
+  int i = 0;
+  size_t keypoints = 0;
+  for (auto _ : state) {
+    frame.image_name = "rgb/" + std::to_string(i++ % kFrames) + ".png";
+    const FrameFeatures f = extractor->ExtractFrame(frame);
+    keypoints = f.size();
+    benchmark::DoNotOptimize(f.descriptors.data);
+  }
+  state.counters["keypoints"] = static_cast<double>(keypoints);
+  std::filesystem::remove(path);
+}
+
 const bool kRegistered = [] {
+  benchmark::RegisterBenchmark("ImportH5/float128", BM_ImportH5, false)->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("ImportH5/binary32", BM_ImportH5, true)->Unit(benchmark::kMillisecond);
   for (const std::string& type : FeatureTypeNames()) {
     if (type == "superpoint" && std::getenv("DUSKMAP_SUPERPOINT_ONNX") == nullptr) continue;
+    if (type == "h5") continue;  // imported, not detected: ImportH5 above
     benchmark::RegisterBenchmark(("Extract/" + type).c_str(), BM_Extract, type)
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime();

@@ -1,5 +1,7 @@
 // `duskmap features eval`: the real-image illumination benchmark of the
 // feature types on Oxford/HPatches-layout sequences (JSON + Markdown).
+// `duskmap features export`: a dataset's features in hloc's HDF5 layout, and
+// the list of its images for an external extractor (docs/features.md).
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -11,7 +13,10 @@
 #include "experiments/command_registry.h"
 #include "slam/core/check.h"
 #include "slam/core/json_fields.h"
+#include "slam/datasets/dataset_factory.h"
+#include "slam/engine/feature_export.h"
 #include "slam/features/sequence_eval.h"
+#include "slam/io/output_safety.h"
 
 namespace duskmap::cli {
 namespace {
@@ -65,6 +70,62 @@ int RunEval(const EvalArgs& args) {
   return 0;
 }
 
+struct ExportArgs {
+  std::string dataset;
+  std::string format = "auto";
+  std::vector<std::string> sessions;
+  std::string type;
+  std::string config;
+  std::string output;
+  std::string image_list;
+  bool overwrite = false;
+};
+
+int RunExport(const ExportArgs& args, bool type_given) {
+  CheckOutputsApartFromInputs({{"--output", args.output}, {"--image-list", args.image_list}},
+                              {{"--dataset", args.dataset}, {"--config", args.config}});
+  const OwnedOutput export_file{"a duskmap feature export", [](const std::filesystem::path& p) {
+                                  return IsDuskmapFeatureExport(p.string());
+                                }};
+  const OwnedOutput image_list{"a file (image lists are plain text)",
+                               [](const std::filesystem::path& p) {
+                                 return std::filesystem::is_regular_file(p);
+                               }};
+  if (!args.output.empty()) CheckMayReplace({"--output", args.output}, args.overwrite, export_file);
+  if (!args.image_list.empty()) {
+    CheckMayReplace({"--image-list", args.image_list}, args.overwrite, image_list);
+  }
+  FeatureOptions features;
+  if (!args.config.empty()) {
+    JsonFields fields(ReadJsonFile(args.config), args.config);
+    features = ReadFeatureOptions(fields);
+  }
+  SLAM_THROW_IF_NOT(ConfigError, args.output.empty() || type_given || !args.config.empty())
+      << "features export: --output needs --type (or a --config naming one)";
+  if (type_given) features.type = args.type;
+  features.Check();
+  FeatureExportOptions options;
+  options.sessions = args.sessions;
+  options.output_path = args.output;
+  options.image_list_path = args.image_list;
+  options.Check();
+  const auto dataset = OpenDataset(args.dataset, args.format);
+  const FeatureExportSummary summary =
+      ExportFeatures(*dataset, features, options, [](const std::string& session, int64_t frames) {
+        std::cout << "features export: session " << session << ": " << frames << " frames\n";
+      });
+  std::cout << "features export: " << summary.sessions << " session(s), " << summary.frames
+            << " frames";
+  if (!args.output.empty()) {
+    std::cout << ", " << features.type << " " << summary.mean_features << " features and "
+              << summary.mean_extract_ms << " ms per frame; wrote " << args.output << " ("
+              << summary.output_bytes << " bytes)";
+  }
+  if (!args.image_list.empty()) std::cout << "; image list " << args.image_list;
+  std::cout << "\n";
+  return 0;
+}
+
 RunFn SetupFeatures(CLI::App& command) {
   command.require_subcommand(1);
   auto args = std::make_shared<EvalArgs>();
@@ -77,14 +138,32 @@ RunFn SetupFeatures(CLI::App& command) {
   eval->add_option("--config", args->config, "JSON feature options (FeatureOptions)");
   eval->add_option("--threads", args->threads, "OpenCV threads (1: per-core timings)");
   eval->add_option("--out", args->out_dir, "folder for features_eval.json and features_eval.md");
-  return [args, eval] {
-    SLAM_THROW_IF_NOT(ConfigError, eval->parsed()) << "features: expected a subcommand (eval)";
+  auto export_args = std::make_shared<ExportArgs>();
+  CLI::App* exporter = command.add_subcommand(
+      "export", "Write a dataset's features in hloc's HDF5 layout, or list its images for an external extractor");
+  exporter->add_option("--dataset", export_args->dataset, "dataset folder")->required();
+  exporter->add_option("--dataset-format,--format", export_args->format,
+                       "dataset format: auto (default), synthetic, tum, rtabmap-images");
+  exporter->add_option("--sessions", export_args->sessions, "sessions to export (default: all)")
+      ->delimiter(',');
+  exporter->add_option("--type", export_args->type, "feature type (surf, sift, brief, ..., h5)");
+  exporter->add_option("--config", export_args->config, "JSON feature options (FeatureOptions)");
+  exporter->add_option("--output", export_args->output,
+                       "the .h5 to write: one group per image, \"<session>/<image name>\"");
+  exporter->add_option("--image-list", export_args->image_list,
+                       "write \"<group name>\\t<image file>\" per frame, for an external extractor");
+  exporter->add_flag("--overwrite", export_args->overwrite,
+                     "replace an existing export (only a duskmap export) or image list");
+  CLI::Option* type_option = exporter->get_option("--type");
+  return [args, eval, export_args, exporter, type_option] {
+    if (exporter->parsed()) return RunExport(*export_args, type_option->count() > 0);
+    SLAM_THROW_IF_NOT(ConfigError, eval->parsed()) << "features: expected a subcommand (eval, export)";
     return RunEval(*args);
   };
 }
 
 const bool kRegistered = RegisterCommand(
-    {"features", "Evaluate feature extractors on real image sequences", &SetupFeatures});
+    {"features", "Evaluate feature extractors on real image sequences; export features in hloc's HDF5 layout", &SetupFeatures});
 
 }  // namespace
 }  // namespace duskmap::cli

@@ -175,6 +175,7 @@ RunFn SetupRun(CLI::App& command) {
     for (const SessionInfo& s : sessions) session_names.push_back(s.name);
     // A session the dataset lacks fails here, before any job runs.
     CheckSessionsExist(options, session_names, args->config);
+    CheckDeclaredFeatureFiles(options);
     RunManifest manifest;
     manifest.config_path = args->config;
     manifest.dataset_path = options.dataset_path;

@@ -22,6 +22,14 @@ struct RgbdFrame {
   Rigid3d body_from_camera;       // camera-to-body (device) transform
   Rigid3d odom_from_body;         // odometry pose of the body in its session's odometry frame
   std::optional<Rigid3d> world_from_camera;  // ground truth, when the dataset has it
+  // Where the frame came from, for features imported per image (h5) and for
+  // lists of the images an external extractor should read: the session's
+  // name, the colour image relative to the session folder ("rgb/60360.000000.png")
+  // and as the reader opened it. Empty where the dataset has no image files
+  // (RTAB-Map databases hold their images as blobs).
+  std::string session;
+  std::string image_name;
+  std::string image_file;
 
   Rigid3d odom_from_camera() const { return odom_from_body * body_from_camera; }
 };

@@ -134,6 +134,7 @@ class DbSessionReader : public SessionReader {
     const DbFrame& node = session_->frames[next_];
     RgbdFrame frame;
     frame.frame_index = static_cast<int64_t>(next_++);
+    frame.session = session_->info.name;  // no image_name: the images are blobs
     ReadFrame(node, &frame);
     return frame;
   }

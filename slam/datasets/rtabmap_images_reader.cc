@@ -26,6 +26,7 @@ constexpr double kPoseAgreementRad = 1e-3;
 struct ImageFrame {
   std::string stem;
   std::string rgb_path;
+  std::string name;  // relative to the session folder: "rgb/<stem>.jpg", "<prefix>_rgb/<stem>.jpg"
   double stamp_s = 0.0;
   Rigid3d odom_from_body;
 };
@@ -144,6 +145,7 @@ ImageSession IndexSession(const ImageSessionLayout& layout, const DatasetReadOpt
     ImageFrame frame;
     frame.stem = entry.stem().string();
     frame.rgb_path = entry.string();
+    frame.name = (entry.parent_path().filename() / entry.filename()).string();
     std::string problem;
     try {
       problem = ResolveFrame(layout, device, camera, &frame);
@@ -193,6 +195,9 @@ class ImageSessionReader : public SessionReader {
     }
     assembler_.Assemble(bgr, depth_m, calibration, image.rgb_path, &frame);
     frame.timestamp_s = image.stamp_s;
+    frame.session = session_->info.name;
+    frame.image_name = image.name;
+    frame.image_file = image.rgb_path;
     frame.odom_from_body = image.odom_from_body;
     return frame;
   }

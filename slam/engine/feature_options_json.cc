@@ -50,7 +50,10 @@ nlohmann::json FeatureOptionsToJson(const FeatureOptions& o) {
       {"superpoint",
        {{"model_path", o.superpoint.model_path}, {"threshold", o.superpoint.threshold},
         {"nms_radius_px", o.superpoint.nms_radius_px},
-        {"border_px", o.superpoint.border_px}}}};
+        {"border_px", o.superpoint.border_px}}},
+      {"h5",
+       {{"path", o.h5.path}, {"descriptor_kind", o.h5.descriptor_kind},
+        {"keypoint_origin", o.h5.keypoint_origin}}}};
 }
 
 }  // namespace duskmap

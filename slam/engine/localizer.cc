@@ -79,7 +79,7 @@ Localizer::~Localizer() = default;
 LocalizationRecord Localizer::ProcessFrame(const RgbdFrame& frame) {
   if (extractor_ == nullptr) extractor_ = CreateFeatureExtractor(options_.features);
   Stopwatch watch;
-  const FrameFeatures features = extractor_->Extract(frame.bgr, frame.depth_m, &frame.camera);
+  const FrameFeatures features = extractor_->ExtractFrame(frame);
   const double features_ms = watch.ElapsedMs();
   LocalizationRecord record = ProcessFrame(frame, features);
   record.timings.features_ms = features_ms;

@@ -59,7 +59,7 @@ void Mapper::StartSession(const std::string& name, const std::optional<std::stri
 
 MappingFrameResult Mapper::ProcessFrame(const RgbdFrame& frame) {
   Stopwatch watch;
-  FrameFeatures features = extractor_->Extract(frame.bgr, frame.depth_m, &frame.camera);
+  FrameFeatures features = extractor_->ExtractFrame(frame);
   const double features_ms = watch.ElapsedMs();
   MappingFrameResult result = ProcessFrame(frame, std::move(features));
   result.timings.features_ms = features_ms;

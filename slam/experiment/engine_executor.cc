@@ -97,6 +97,7 @@ double WriteGraphAndAte(const Map& map, const fs::path& graph_file) {
 EngineOptions EngineOptionsForFeature(const EngineOptions& base, const FeatureSetup& setup) {
   EngineOptions options = base;
   options.features.type = setup.extractor;
+  if (setup.extractor == "h5") options.features.h5 = setup.h5;  // a declared column's file
   // The column decides the matcher (SP: NNDR, SG: SuperGlue on the same
   // SuperPoint features); the engine config supplies the SuperGlue model.
   options.matcher.type = setup.matcher;
@@ -159,7 +160,9 @@ void EngineJobExecutor::Extract(const Job& job, const fs::path& job_dir) {
     reader = dataset_.OpenSession(job.session);
   }
   EngineOptions options = engine_;
-  options.features.type = job.extractor;
+  const FeatureSetup& setup = experiment_.FeatureSetupOfCache(job.extractor);
+  options.features.type = setup.extractor;
+  if (setup.extractor == "h5") options.features.h5 = setup.h5;
   options.features.Check();
   const std::unique_ptr<FeatureExtractor> extractor = CreateFeatureExtractor(options.features);
   FeatureCacheWriter writer(job_dir / kFeatureCacheFile, job.extractor, reader->info());
@@ -174,7 +177,7 @@ void EngineJobExecutor::Extract(const Job& job, const fs::path& job_dir) {
       break;
     }
     Stopwatch watch;
-    const FrameFeatures features = extractor->Extract(frame->bgr, frame->depth_m, &frame->camera);
+    const FrameFeatures features = extractor->ExtractFrame(*frame);
     times_ms.push_back(watch.ElapsedMs());
     features_sum += features.size();
     writer.Append(*frame, features);
@@ -192,7 +195,7 @@ void EngineJobExecutor::Extract(const Job& job, const fs::path& job_dir) {
 }
 
 void EngineJobExecutor::BuildMapJob(const Job& job, const fs::path& job_dir) {
-  EngineOptions options = EngineOptionsForFeature(engine_, FeatureSetupByLabel(job.feature));
+  EngineOptions options = EngineOptionsForFeature(engine_, experiment_.FeatureSetupOf(job.feature));
   options.mapping.reduce_graph = job.map.kind == MapKind::kReduced;
   std::vector<std::unique_ptr<FeatureCacheReader>> readers;
   std::vector<FrameSource*> sources;
@@ -240,7 +243,7 @@ void EngineJobExecutor::BuildMapJob(const Job& job, const fs::path& job_dir) {
 }
 
 void EngineJobExecutor::Localize(const Job& job, const fs::path& job_dir) {
-  const EngineOptions options = EngineOptionsForFeature(engine_, FeatureSetupByLabel(job.feature));
+  const EngineOptions options = EngineOptionsForFeature(engine_, experiment_.FeatureSetupOf(job.feature));
   const std::string map_file =
       (OutputDir(output_dir_, "map/" + job.feature + "/" + job.map.label) / kMapFile).string();
   // The words apart: the localizer imports its copy of them (the rows are

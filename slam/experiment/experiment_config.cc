@@ -6,6 +6,7 @@
 #include "slam/core/check.h"
 #include "slam/core/json_fields.h"
 #include "slam/experiment/job_plan.h"
+#include "slam/features/feature_extractor.h"
 #include "slam/io/output_safety.h"
 
 namespace duskmap {
@@ -28,7 +29,61 @@ std::vector<ConsecutivePair> ReadPairs(const nlohmann::json& json, const std::st
   return pairs;
 }
 
+// The "features" array: known column codes as strings, declared columns as
+// objects {"code", "type": "h5", "path", "descriptor_kind", "keypoint_origin"}.
+void ReadFeatures(JsonFields& root, const std::filesystem::path& base, ExperimentOptions* options) {
+  const nlohmann::json& features = root.Raw("features");
+  const std::string where = root.where() + ".features";
+  SLAM_THROW_IF_NOT(ConfigError, features.is_array())
+      << where << ": expected an array of column codes (\"SU\") or declared columns ({\"code\": ...})";
+  for (size_t i = 0; i < features.size(); ++i) {
+    const std::string at = where + "[" + std::to_string(i) + "]";
+    if (features[i].is_string()) {
+      options->features.push_back(features[i].get<std::string>());
+      continue;
+    }
+    SLAM_THROW_IF_NOT(ConfigError, features[i].is_object())
+        << at << ": expected a column code or a declared column object";
+    JsonFields column(features[i], at);
+    FeatureSetup setup;
+    std::string type;
+    column.ReadRequired("code", &setup.label);
+    column.ReadRequired("type", &type);
+    SLAM_THROW_IF_NOT(ConfigError, type == "h5")
+        << at << ".type: '" << type
+        << "' cannot be declared (h5 imports a file; built-in types are listed by code: SU, SI, ...)";
+    column.ReadRequired("path", &setup.h5.path);
+    column.Read("descriptor_kind", &setup.h5.descriptor_kind);
+    column.Read("keypoint_origin", &setup.h5.keypoint_origin);
+    column.RejectUnknown();
+    setup.h5.path = ResolveRelative(setup.h5.path, base);
+    setup.extractor = "h5";
+    setup.matcher = "nndr";
+    options->features.push_back(setup.label);
+    options->declared_features.push_back(setup);
+  }
+}
+
 }  // namespace
+
+std::string FeatureSetup::CacheName() const {
+  return extractor == "h5" ? "h5-" + label : extractor;
+}
+
+const FeatureSetup& ExperimentOptions::FeatureSetupOf(const std::string& label) const {
+  for (const FeatureSetup& setup : declared_features) {
+    if (setup.label == label) return setup;
+  }
+  return FeatureSetupByLabel(label);
+}
+
+const FeatureSetup& ExperimentOptions::FeatureSetupOfCache(const std::string& cache_name) const {
+  for (const std::string& label : features) {
+    const FeatureSetup& setup = FeatureSetupOf(label);
+    if (setup.CacheName() == cache_name) return setup;
+  }
+  throw ConfigError("no feature column extracts '" + cache_name + "'");
+}
 
 const std::vector<FeatureSetup>& KnownFeatureSetups() {
   static const std::vector<FeatureSetup> setups = {
@@ -55,8 +110,21 @@ void ExperimentOptions::Check() const {
   SLAM_THROW_IF_NOT(ConfigError, !dataset_path.empty()) << "dataset.path: must be set";
   SLAM_THROW_IF_NOT(ConfigError, !features.empty()) << "features: at least one feature needed";
   std::set<std::string> seen;
+  for (const FeatureSetup& declared : declared_features) {
+    CheckPathLabel(declared.label, "features (declared code)");
+    for (const FeatureSetup& known : KnownFeatureSetups()) {
+      SLAM_THROW_IF_NOT(ConfigError, known.label != declared.label)
+          << "features: declared code '" << declared.label << "' is a built-in column's ("
+          << known.extractor << "); choose another code";
+    }
+    try {
+      declared.h5.Check();
+    } catch (const ConfigError& e) {
+      SLAM_THROW(ConfigError) << "features: '" << declared.label << "': " << e.what();
+    }
+  }
   for (const std::string& feature : features) {
-    FeatureSetupByLabel(feature);
+    FeatureSetupOf(feature);
     SLAM_THROW_IF_NOT(ConfigError, seen.insert(feature).second)
         << "features: '" << feature << "' listed twice";
   }
@@ -144,6 +212,15 @@ void CheckSessionsExist(const ExperimentOptions& options, const std::vector<std:
   }
 }
 
+void CheckDeclaredFeatureFiles(const ExperimentOptions& options) {
+  for (const FeatureSetup& setup : options.declared_features) {
+    FeatureOptions features;
+    features.type = setup.extractor;
+    features.h5 = setup.h5;
+    CreateFeatureExtractor(features);  // the h5 type opens its file here
+  }
+}
+
 ExperimentOptions ReadExperimentOptions(const std::string& path) {
   const std::filesystem::path base = std::filesystem::path(path).parent_path();
   JsonFields root(ReadJsonFile(path), path);
@@ -155,7 +232,8 @@ ExperimentOptions ReadExperimentOptions(const std::string& path) {
   dataset.RejectUnknown();
   options.dataset_path = ResolveRelative(options.dataset_path, base);
 
-  root.ReadRequired("features", &options.features);
+  SLAM_THROW_IF_NOT(ConfigError, root.Has("features")) << root.where() << ": missing key 'features'";
+  ReadFeatures(root, base, &options);
   std::vector<std::string> map_labels;
   root.Read("maps", &map_labels);
   for (const std::string& label : map_labels) {

@@ -9,15 +9,24 @@
 #include <vector>
 
 #include "slam/experiment/map_spec.h"
+#include "slam/features/feature_options.h"
 
 namespace duskmap {
 
 // A feature column of the paper's tables: which extractor and which matcher.
 struct FeatureSetup {
   std::string label;      // column code, as in the paper: "SU", "SI", ..., "SG"
-  std::string extractor;  // extractor factory name: "surf", "sift", ...
+  std::string extractor;  // extractor factory name: "surf", "sift", ..., "h5"
   std::string matcher;    // "nndr" or "superglue"
   bool needs_model = false;  // SuperPoint / SuperGlue need an ONNX model file
+  // A column the experiment config declares, with features imported from a
+  // file in hloc's layout (extractor "h5"); unused by the built-in columns.
+  H5FeatureOptions h5;
+
+  // The name of the column's extract jobs and feature caches: the extractor
+  // for built-in columns (SP and SG share SuperPoint's), "h5-<label>" for a
+  // declared one (two declared columns never share a cache).
+  std::string CacheName() const;
 };
 
 // The known feature columns (paper's eight plus ORB, AKAZE, FREAK).
@@ -33,7 +42,10 @@ struct ConsecutivePair {
 struct ExperimentOptions {
   std::string dataset_path;            // dataset folder or file
   std::string dataset_format = "auto"; // synthetic | tum | rtabmap-images | rtabmap-db | auto
-  std::vector<std::string> features;   // FeatureSetup labels, e.g. {"SU", "SI"}
+  std::vector<std::string> features;   // FeatureSetup labels, e.g. {"SU", "SI", "MY"}
+  // Columns the config declares beside the known ones, e.g.
+  //   {"code": "MY", "type": "h5", "path": "feats/disk.h5", "descriptor_kind": "float"}
+  std::vector<FeatureSetup> declared_features;
   std::vector<MapSpec> maps;
   std::vector<std::string> localization_sessions;
   std::vector<ConsecutivePair> consecutive_pairs;
@@ -49,11 +61,19 @@ struct ExperimentOptions {
 
   // Throws ConfigError naming the field.
   void Check() const;
+  // The setup of column `label` (declared, else known); throws ConfigError.
+  const FeatureSetup& FeatureSetupOf(const std::string& label) const;
+  // The setup of the first listed column whose CacheName() is `cache_name`.
+  const FeatureSetup& FeatureSetupOfCache(const std::string& cache_name) const;
 };
 
 // Reads and checks an experiment config; relative paths inside it are resolved
 // against the config file's folder. Throws ConfigError("<file>...: <problem>").
 ExperimentOptions ReadExperimentOptions(const std::string& path);
+
+// Opens the file (or checks the folder) of every declared h5 column, so that a
+// missing or foreign file fails before any job runs: InputError naming it.
+void CheckDeclaredFeatureFiles(const ExperimentOptions& options);
 
 // Throws ConfigError("<where>: <key>: session 'Z' is not in the dataset ...")
 // when a map, localization session, consecutive pair or clock time names a

@@ -48,26 +48,26 @@ class PlanBuilder {
     job.kind = JobKind::kBuildMap;
     job.id = MapId(feature.label, map);
     job.feature = feature.label;
-    job.extractor = feature.extractor;
+    job.extractor = feature.CacheName();
     job.map = map;
     for (const std::string& session : map.sessions) {
-      AddExtract(feature.extractor, session);
-      job.depends_on.push_back(ExtractId(feature.extractor, session));
+      AddExtract(feature.CacheName(), session);
+      job.depends_on.push_back(ExtractId(feature.CacheName(), session));
     }
     Add(std::move(job));
   }
   std::string AddLocalize(const FeatureSetup& feature, const MapSpec& map,
                           const std::string& session) {
     AddMap(feature, map);
-    AddExtract(feature.extractor, session);
+    AddExtract(feature.CacheName(), session);
     Job job;
     job.kind = JobKind::kLocalize;
     job.id = LocalizeId(feature.label, map, session);
     job.feature = feature.label;
-    job.extractor = feature.extractor;
+    job.extractor = feature.CacheName();
     job.map = map;
     job.session = session;
-    job.depends_on = {MapId(feature.label, map), ExtractId(feature.extractor, session)};
+    job.depends_on = {MapId(feature.label, map), ExtractId(feature.CacheName(), session)};
     const std::string id = job.id;
     Add(std::move(job));
     return id;
@@ -170,7 +170,7 @@ ExperimentPlan PlanExperiment(const ExperimentOptions& options, const SessionClo
   ExperimentPlan plan;
   PlanBuilder builder(&plan);
   for (const std::string& label : options.features) {
-    const FeatureSetup& feature = FeatureSetupByLabel(label);
+    const FeatureSetup& feature = options.FeatureSetupOf(label);
     for (const MapSpec& map : options.maps) {
       for (const std::string& session : options.localization_sessions) {
         const MapSpec used =

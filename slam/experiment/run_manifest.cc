@@ -39,7 +39,7 @@ void SelectRunnableFeatures(const ExperimentOptions& options, const FeatureModel
     return "";
   };
   for (const std::string& label : options.features) {
-    const FeatureSetup& setup = FeatureSetupByLabel(label);
+    const FeatureSetup& setup = options.FeatureSetupOf(label);
     std::string reason;
     if (setup.needs_model) reason = missing(models.superpoint, "features.superpoint.model_path");
     if (reason.empty() && setup.matcher == "superglue") {

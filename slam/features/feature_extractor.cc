@@ -53,10 +53,10 @@ cv::Mat ToGray8(const cv::Mat& image) {
   return gray;
 }
 
-FrameFeatures FeatureExtractor::Extract(const cv::Mat& image, const cv::Mat& depth_m,
-                                        const PinholeCamera* camera) const {
-  FrameFeatures features;
-  features.kind = kind();
+namespace {
+
+// Depth, when given, must be CV_32F metres of the image's size with a valid camera.
+void CheckDepth(const cv::Mat& image, const cv::Mat& depth_m, const PinholeCamera* camera) {
   if (!depth_m.empty()) {
     SLAM_THROW_IF_NOT(InputError, depth_m.type() == CV_32FC1)
         << "feature extraction: depth must be CV_32FC1 metres, got type code " << depth_m.type();
@@ -67,17 +67,48 @@ FrameFeatures FeatureExtractor::Extract(const cv::Mat& image, const cv::Mat& dep
                                       camera->width == image.cols && camera->height == image.rows)
         << "feature extraction: depth given without a valid camera of the image's size";
   }
+}
+
+}  // namespace
+
+FrameFeatures FeatureExtractor::Extract(const cv::Mat& image, const cv::Mat& depth_m,
+                                        const PinholeCamera* camera) const {
+  FrameFeatures features;
+  features.kind = kind();
+  CheckDepth(image, depth_m, camera);
   if (image.empty()) return features;
+  SLAM_THROW_IF_NOT(InputError, DetectsOnImages())
+      << "features.type " << name()
+      << ": its features are read per dataset frame (session and image name), not from an image";
   const cv::Mat gray = ToGray8(image);
   DetectAndDescribe(gray, &features.keypoints, &features.descriptors);
-  if (features.keypoints.empty()) {
-    features.descriptors.release();
-  } else {
-    SLAM_CHECK(features.descriptors.rows == static_cast<int>(features.keypoints.size()));
-    KeepStrongest(max_features_, &features.keypoints, &features.descriptors);
-  }
-  AttachPoints(depth_m, camera, max_depth_m_, &features);
+  Finish(depth_m, camera, &features);
   return features;
+}
+
+FrameFeatures FeatureExtractor::ExtractFrame(const RgbdFrame& frame) const {
+  if (DetectsOnImages()) return Extract(frame.bgr, frame.depth_m, &frame.camera);
+  FrameFeatures features;
+  features.kind = kind();
+  CheckDepth(frame.bgr, frame.depth_m, &frame.camera);
+  ImportFrame(frame, &features.keypoints, &features.descriptors);
+  Finish(frame.depth_m, &frame.camera, &features);
+  return features;
+}
+
+void FeatureExtractor::ImportFrame(const RgbdFrame&, std::vector<cv::KeyPoint>*, cv::Mat*) const {
+  SLAM_CHECK_MSG(false, "a type that detects on images imports nothing");
+}
+
+void FeatureExtractor::Finish(const cv::Mat& depth_m, const PinholeCamera* camera,
+                              FrameFeatures* features) const {
+  if (features->keypoints.empty()) {
+    features->descriptors.release();
+  } else {
+    SLAM_CHECK(features->descriptors.rows == static_cast<int>(features->keypoints.size()));
+    KeepStrongest(max_features_, &features->keypoints, &features->descriptors);
+  }
+  AttachPoints(depth_m, camera, max_depth_m_, features);
 }
 
 void KeepStrongest(int max_count, std::vector<cv::KeyPoint>* keypoints, cv::Mat* descriptors) {

@@ -10,6 +10,7 @@
 #include <opencv2/core.hpp>
 
 #include "slam/core/camera.h"
+#include "slam/core/rgbd_frame.h"
 #include "slam/features/feature_options.h"
 #include "slam/features/frame_features.h"
 
@@ -31,7 +32,22 @@ class FeatureExtractor {
   FrameFeatures Extract(const cv::Mat& image, const cv::Mat& depth_m = cv::Mat(),
                         const PinholeCamera* camera = nullptr) const;
 
+  // The features of a dataset frame: detected on its image (as Extract with
+  // its depth and camera) or, for a type that imports them (h5), read for
+  // the frame's session and image name; either way at most max_features,
+  // strongest first, with 3D points from the frame's depth.
+  FrameFeatures ExtractFrame(const RgbdFrame& frame) const;
+
+  // False for the types whose features come from a file per image (h5):
+  // they need ExtractFrame, and Extract on a bare image throws InputError.
+  virtual bool DetectsOnImages() const { return true; }
+
  protected:
+  // Types that import features override this (and DetectsOnImages): the
+  // frame's keypoints and one descriptor row each, in any order.
+  virtual void ImportFrame(const RgbdFrame& frame, std::vector<cv::KeyPoint>* keypoints,
+                           cv::Mat* descriptors) const;
+
   // Detects and describes on an 8-bit single-channel, non-empty image. May
   // return more than max_features (Extract keeps the strongest) and in any
   // order; descriptors must have one row per keypoint (or be empty when there
@@ -40,6 +56,9 @@ class FeatureExtractor {
                                  cv::Mat* descriptors) const = 0;
 
  private:
+  // Keeps the strongest max_features and attaches their 3D points.
+  void Finish(const cv::Mat& depth_m, const PinholeCamera* camera, FrameFeatures* features) const;
+
   int max_features_;
   double max_depth_m_;
 };

@@ -4,6 +4,7 @@
 #include "slam/features/daisy.h"
 #include "slam/features/feature_extractor.h"
 #include "slam/features/freak.h"
+#include "slam/features/h5_extractor.h"
 #include "slam/features/opencv_extractors.h"
 #include "slam/features/superpoint.h"
 #include "slam/features/surf.h"
@@ -23,6 +24,7 @@ std::unique_ptr<FeatureExtractor> CreateFeatureExtractor(const FeatureOptions& o
   if (o.type == "orb") return CreateOrbExtractor(o.orb, n, d);
   if (o.type == "akaze") return CreateAkazeExtractor(o.akaze, n, d);
   if (o.type == "freak") return std::make_unique<FreakExtractor>(o.freak, o.gftt, o.fast, n, d);
+  if (o.type == "h5") return std::make_unique<H5FeatureExtractor>(o.h5, n, d);
   SLAM_THROW_IF_NOT(ConfigError, o.type == "superpoint")
       << "features.type: unknown feature type '" << o.type << "'";
   return std::make_unique<SuperPointExtractor>(o.superpoint, n, d);

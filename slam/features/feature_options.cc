@@ -93,7 +93,23 @@ void ReadSuperPoint(JsonFields f, SuperPointOptions* o) {
   f.RejectUnknown();
 }
 
+void ReadH5(JsonFields f, H5FeatureOptions* o) {
+  f.Read("path", &o->path);
+  f.Read("descriptor_kind", &o->descriptor_kind);
+  f.Read("keypoint_origin", &o->keypoint_origin);
+  f.RejectUnknown();
+}
+
 }  // namespace
+
+void H5FeatureOptions::Check() const {
+  SLAM_THROW_IF_NOT(ConfigError, descriptor_kind == "float" || descriptor_kind == "binary")
+      << "features.h5.descriptor_kind: '" << descriptor_kind
+      << "' unknown (float: L2 over float32/float16; binary: Hamming over uint8)";
+  SLAM_THROW_IF_NOT(ConfigError, keypoint_origin == "pixel_centre" || keypoint_origin == "pixel_corner")
+      << "features.h5.keypoint_origin: '" << keypoint_origin
+      << "' unknown (pixel_centre: OpenCV and hloc; pixel_corner: COLMAP)";
+}
 
 void SurfOptions::Check() const {
   FEATURE_OPTION_CHECK(hessian_threshold >= 0.0, "surf.hessian_threshold");
@@ -181,11 +197,15 @@ void FeatureOptions::Check() const {
   daisy.Check();
   freak.Check();
   superpoint.Check();
+  h5.Check();
+  SLAM_THROW_IF_NOT(ConfigError, type != "h5" || !h5.path.empty())
+      << "features.h5.path: features of type h5 need the .h5 file (or folder of <session>.h5)";
 }
 
 const std::vector<std::string>& FeatureTypeNames() {
   static const std::vector<std::string> kNames = {"surf", "sift",  "brief", "brisk", "kaze",
-                                                  "daisy", "orb", "akaze", "freak", "superpoint"};
+                                                  "daisy", "orb", "akaze", "freak", "superpoint",
+                                                  "h5"};
   return kNames;
 }
 
@@ -207,6 +227,7 @@ FeatureOptions ReadFeatureOptions(JsonFields& f) {
   ReadDaisy(f.Child("daisy"), &o.daisy);
   ReadFreak(f.Child("freak"), &o.freak);
   ReadSuperPoint(f.Child("superpoint"), &o.superpoint);
+  ReadH5(f.Child("h5"), &o.h5);
   f.RejectUnknown();
   o.Check();
   return o;

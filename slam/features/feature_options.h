@@ -109,6 +109,17 @@ struct SuperPointOptions {
   void Check() const;
 };
 
+// Features imported from a file in hloc's HDF5 layout (h5_feature_file.h).
+struct H5FeatureOptions {
+  // A .h5 file for the whole dataset, with one group per image named
+  // "<session>/<image name>" ("1/rgb/60360.000000.png"), or a folder with one
+  // "<session>.h5" per session whose groups are named "<image name>".
+  std::string path;
+  std::string descriptor_kind = "float";         // "float" (L2) or "binary" (Hamming): checked against the file's dtype
+  std::string keypoint_origin = "pixel_centre";  // "pixel_centre" (OpenCV, hloc) or "pixel_corner" (COLMAP)
+  void Check() const;
+};
+
 // Which extractor to build and its options. `type` is one of
 // FeatureTypeNames(); only the sub-options of that type are used.
 struct FeatureOptions {
@@ -128,10 +139,11 @@ struct FeatureOptions {
   DaisyOptions daisy;
   FreakOptions freak;
   SuperPointOptions superpoint;
+  H5FeatureOptions h5;
   void Check() const;
 };
 
-// surf, sift, brief, brisk, kaze, daisy, orb, akaze, freak, superpoint.
+// surf, sift, brief, brisk, kaze, daisy, orb, akaze, freak, superpoint, h5.
 const std::vector<std::string>& FeatureTypeNames();
 
 // Reads FeatureOptions from a JSON object such as

@@ -184,6 +184,9 @@ class TumSessionReader : public SessionReader {
     RgbdFrame frame;
     frame.frame_index = static_cast<int64_t>(next_);
     frame.timestamp_s = entry.timestamp_s;
+    frame.session = info_.name;
+    frame.image_name = entry.rgb_file;
+    frame.image_file = folder_ + "/" + entry.rgb_file;
     frame.camera = calibration_.camera;
     frame.bgr = ReadImage(entry.rgb_file, cv::IMREAD_COLOR, CV_8UC3);
     frame.depth_m = RawToDepth(ReadImage(entry.depth_file, cv::IMREAD_ANYDEPTH, CV_16UC1),

@@ -20,7 +20,9 @@ TEST(FeatureOptionsTest, DefaultsAreThePapersSettings) {
   EXPECT_EQ(o.daisy.radius_px, 15.0);
   EXPECT_EQ(o.superpoint.threshold, 0.010);
   EXPECT_EQ(o.superpoint.nms_radius_px, 4);
-  EXPECT_EQ(FeatureTypeNames().size(), 10u);
+  EXPECT_EQ(FeatureTypeNames().size(), 11u);  // the ten detectors and h5 (imported)
+  EXPECT_EQ(o.h5.descriptor_kind, "float");
+  EXPECT_EQ(o.h5.keypoint_origin, "pixel_centre");
 }
 
 TEST(FeatureOptionsTest, ReadsJsonAndRejectsUnknownKeys) {

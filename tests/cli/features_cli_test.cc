@@ -1,0 +1,233 @@
+// End-to-end: `duskmap features export` and the h5 feature type. A built-in
+// type exported and imported back gives the same maps and the same
+// re-localization records as the type itself; an external extractor's file
+// (scripts/external_sift_features.py) runs through map and localize.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr
+};
+
+Result RunDuskmap(const std::string& args) {
+  Result result;
+  FILE* pipe = ::popen((std::string(DUSKMAP_EXE) + " " + args + " 2>&1").c_str(), "r");
+  if (!pipe) return result;
+  std::array<char, 4096> buffer;
+  while (size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
+  const int status = ::pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+std::vector<std::string> Lines(const std::string& path) {
+  std::vector<std::string> lines;
+  std::ifstream in(path);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+// The records without their timings (the only field that differs run to run).
+std::vector<nlohmann::json> RecordsWithoutTimings(const std::string& path) {
+  std::vector<nlohmann::json> records;
+  for (const std::string& line : Lines(path)) {
+    nlohmann::json record = nlohmann::json::parse(line);
+    record.erase("timings_ms");
+    records.push_back(record);
+  }
+  return records;
+}
+
+class FeaturesCli : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = (fs::temp_directory_path() / ("duskmap_features_cli_" + std::to_string(::getpid()))).string();
+    fs::create_directories(dir_);
+    nlohmann::json config = nlohmann::json::parse(
+        std::ifstream(std::string(DUSKMAP_SOURCE_DIR) + "/configs/sunset_apartment.json"));
+    config["max_frames"] = 8;
+    config["sessions"] = nlohmann::json::array(
+        {{{"name", "1"}, {"clock_time", "16:46"}, {"role", "mapping"}},
+         {{"name", "A"}, {"clock_time", "16:51"}, {"role", "localization"}}});
+    std::ofstream(dir_ + "/gen.json") << config.dump();
+    const Result generated = RunDuskmap("generate --config " + dir_ + "/gen.json --output " + dir_ + "/data");
+    ASSERT_EQ(generated.exit_code, 0) << generated.output;
+  }
+  static void TearDownTestSuite() { fs::remove_all(dir_); }
+
+  // An engine config whose features are imported from `h5`.
+  static std::string H5Config(const std::string& name, const std::string& h5) {
+    const std::string path = dir_ + "/" + name;
+    std::ofstream(path) << nlohmann::json({{"features", {{"type", "h5"}, {"h5", {{"path", h5}}}}}}).dump();
+    return path;
+  }
+
+  static std::string dir_;
+};
+
+std::string FeaturesCli::dir_;
+
+TEST_F(FeaturesCli, ExportedSiftImportedBackGivesTheSameMapAndRecords) {
+  const Result exported = RunDuskmap("features export --dataset " + dir_ + "/data --type sift --output " +
+                                     dir_ + "/sift.h5 --image-list " + dir_ + "/images.tsv");
+  ASSERT_EQ(exported.exit_code, 0) << exported.output;
+  EXPECT_NE(exported.output.find("2 session(s), 16 frames"), std::string::npos) << exported.output;
+  const std::vector<std::string> list = Lines(dir_ + "/images.tsv");
+  ASSERT_EQ(list.size(), 16u);
+  const size_t tab = list[0].find('\t');
+  ASSERT_NE(tab, std::string::npos);
+  EXPECT_EQ(list[0].substr(0, 6), "1/rgb/");
+  EXPECT_TRUE(fs::exists(list[0].substr(tab + 1))) << list[0];
+  EXPECT_EQ(list[8].substr(0, 6), "A/rgb/");
+
+  const std::string h5 = H5Config("h5.json", dir_ + "/sift.h5");
+  for (const auto& [name, flags] : {std::pair<std::string, std::string>{"builtin", "--feature sift"},
+                                    {"imported", "--config " + h5}}) {
+    const Result map = RunDuskmap("map --dataset " + dir_ + "/data --sessions 1 " + flags + " --output " +
+                                  dir_ + "/" + name + ".db --summary " + dir_ + "/" + name + "_map.json");
+    ASSERT_EQ(map.exit_code, 0) << map.output;
+    const Result localize = RunDuskmap("localize --map " + dir_ + "/" + name + ".db --dataset " + dir_ +
+                                       "/data --session A " + (name == "imported" ? "--config " + h5 : "") +
+                                       " --records " + dir_ + "/" + name + ".jsonl");
+    ASSERT_EQ(localize.exit_code, 0) << localize.output;
+  }
+  nlohmann::json builtin = nlohmann::json::parse(std::ifstream(dir_ + "/builtin_map.json"));
+  nlohmann::json imported = nlohmann::json::parse(std::ifstream(dir_ + "/imported_map.json"));
+  for (const char* key : {"nodes_per_session", "links_by_type", "vocabulary_words", "connected_session_groups"}) {
+    ASSERT_TRUE(builtin.contains(key)) << key;
+    EXPECT_EQ(builtin[key], imported[key]) << key;
+  }
+  for (const char* part : {"descriptors", "keypoints_points", "words_index", "graph"}) {
+    EXPECT_EQ(builtin["memory_bytes"][part], imported["memory_bytes"][part]) << part;
+  }
+  const auto a = RecordsWithoutTimings(dir_ + "/builtin.jsonl");
+  const auto b = RecordsWithoutTimings(dir_ + "/imported.jsonl");
+  ASSERT_EQ(a.size(), 8u);
+  EXPECT_EQ(a, b);
+
+  // An export is replaced only with --overwrite; other files never.
+  const Result again = RunDuskmap("features export --dataset " + dir_ + "/data --type sift --sessions A --output " +
+                                  dir_ + "/sift.h5");
+  EXPECT_NE(again.exit_code, 0);
+  const Result replaced = RunDuskmap("features export --dataset " + dir_ +
+                                     "/data --type orb --sessions A --overwrite --output " + dir_ + "/sift.h5");
+  EXPECT_EQ(replaced.exit_code, 0) << replaced.output;
+  std::ofstream(dir_ + "/notes.h5") << "mine";
+  const Result foreign = RunDuskmap("features export --dataset " + dir_ +
+                                    "/data --type orb --overwrite --output " + dir_ + "/notes.h5");
+  EXPECT_NE(foreign.exit_code, 0);
+  EXPECT_EQ(Lines(dir_ + "/notes.h5"), std::vector<std::string>{"mine"});
+}
+
+TEST_F(FeaturesCli, BadExportsAndImportsFailWithOneLine) {
+  const Result no_type = RunDuskmap("features export --dataset " + dir_ + "/data --output " + dir_ + "/x.h5");
+  EXPECT_NE(no_type.exit_code, 0);
+  EXPECT_NE(no_type.output.find("--output needs --type"), std::string::npos) << no_type.output;
+  const Result nothing = RunDuskmap("features export --dataset " + dir_ + "/data --type orb");
+  EXPECT_NE(nothing.exit_code, 0);
+  EXPECT_NE(nothing.output.find("nothing to write"), std::string::npos) << nothing.output;
+  EXPECT_FALSE(fs::exists(dir_ + "/x.h5"));
+
+  // A file that lacks session A's images: the localization names file and group.
+  ASSERT_EQ(RunDuskmap("features export --dataset " + dir_ + "/data --type orb --sessions 1 --output " + dir_ +
+                       "/only1.h5").exit_code,
+            0);
+  const std::string config = H5Config("only1.json", dir_ + "/only1.h5");
+  nlohmann::json binary = nlohmann::json::parse(std::ifstream(config));
+  binary["features"]["h5"]["descriptor_kind"] = "binary";
+  std::ofstream(config) << binary.dump();
+  ASSERT_EQ(RunDuskmap("map --dataset " + dir_ + "/data --sessions 1 --config " + config + " --output " + dir_ +
+                       "/only1.db").exit_code,
+            0);
+  const Result missing = RunDuskmap("localize --map " + dir_ + "/only1.db --dataset " + dir_ +
+                                    "/data --session A --config " + config);
+  EXPECT_NE(missing.exit_code, 0);
+  EXPECT_NE(missing.output.find(dir_ + "/only1.h5: A/rgb/"), std::string::npos) << missing.output;
+  EXPECT_NE(missing.output.find(": no such image group"), std::string::npos) << missing.output;
+}
+
+// A column declared in an experiment config ({"code", "type": "h5", "path"})
+// runs through `duskmap run` and its report like a built-in one: ORB exported
+// and declared as "XO" gives ORB's cells.
+TEST_F(FeaturesCli, DeclaredH5ColumnInAnExperimentEqualsTheBuiltInColumn) {
+  ASSERT_EQ(RunDuskmap("features export --dataset " + dir_ + "/data --type orb --output " + dir_ +
+                       "/orb.h5").exit_code,
+            0);
+  const nlohmann::json experiment = {
+      {"dataset", {{"path", dir_ + "/data"}, {"format", "synthetic"}}},
+      {"features", {"OR", {{"code", "XO"}, {"type", "h5"}, {"path", "orb.h5"}, {"descriptor_kind", "binary"}}}},
+      {"maps", {"1"}},
+      {"localization_sessions", {"A"}}};
+  std::ofstream(dir_ + "/experiment.json") << experiment.dump(2);
+  const Result run = RunDuskmap("run " + dir_ + "/experiment.json --output " + dir_ + "/results --jobs 2 --no-figures");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(fs::exists(dir_ + "/results/jobs/extract/h5-XO/A/summary.json"));
+  std::map<std::string, std::string> cells;  // feature -> the row after "feature,"
+  for (const std::string& line : Lines(dir_ + "/results/report/cells.csv")) {
+    const size_t comma = line.find(',');
+    std::string rest = line.substr(comma + 1);
+    const std::string job = "localize/" + line.substr(0, comma) + "/";
+    const size_t at = rest.find(job);
+    if (at != std::string::npos) rest.replace(at, job.size(), "localize/*/");
+    cells[line.substr(0, comma)] = rest;
+  }
+  ASSERT_TRUE(cells.count("OR") && cells.count("XO")) << run.output;
+  EXPECT_EQ(cells["OR"], cells["XO"]);
+  EXPECT_NE(Lines(dir_ + "/results/report/tables.md").size(), 0u);
+
+  // A declared column that reuses a built-in code, or names no file, is refused.
+  nlohmann::json clash = experiment;
+  clash["features"][1]["code"] = "SI";
+  std::ofstream(dir_ + "/clash.json") << clash.dump();
+  const Result refused = RunDuskmap("run " + dir_ + "/clash.json --output " + dir_ + "/clash");
+  EXPECT_NE(refused.exit_code, 0);
+  EXPECT_NE(refused.output.find("declared code 'SI' is a built-in column's"), std::string::npos) << refused.output;
+  nlohmann::json other = experiment;
+  other["features"][1]["type"] = "sift";
+  std::ofstream(dir_ + "/other.json") << other.dump();
+  const Result type = RunDuskmap("run " + dir_ + "/other.json --output " + dir_ + "/other");
+  EXPECT_NE(type.exit_code, 0);
+  EXPECT_NE(type.output.find("'sift' cannot be declared"), std::string::npos) << type.output;
+}
+
+// The worked example of docs/features.md: an external extractor (OpenCV's
+// Python SIFT) reads the image list and writes the file the h5 type imports.
+TEST_F(FeaturesCli, ExternalExtractorScriptRoundTrip) {
+  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  if (std::system((python + " -c 'import cv2, h5py, numpy' > /dev/null 2>&1").c_str()) != 0) {
+    GTEST_SKIP() << "python3-opencv or python3-h5py is not installed (scripts/setup.sh installs them)";
+  }
+  ASSERT_EQ(RunDuskmap("features export --dataset " + dir_ + "/data --image-list " + dir_ + "/list.tsv").exit_code, 0);
+  const std::string script = std::string(DUSKMAP_SOURCE_DIR) + "/scripts/external_sift_features.py";
+  ASSERT_EQ(std::system((python + " " + script + " " + dir_ + "/list.tsv " + dir_ + "/external.h5 > /dev/null").c_str()), 0);
+  const std::string config = H5Config("external.json", dir_ + "/external.h5");
+  const Result map = RunDuskmap("map --dataset " + dir_ + "/data --sessions 1 --config " + config + " --output " +
+                                dir_ + "/external.db --summary " + dir_ + "/external_map.json");
+  ASSERT_EQ(map.exit_code, 0) << map.output;
+  const Result localize = RunDuskmap("localize --map " + dir_ + "/external.db --dataset " + dir_ +
+                                     "/data --session A --config " + config + " --summary " + dir_ +
+                                     "/external_a.json");
+  ASSERT_EQ(localize.exit_code, 0) << localize.output;
+  const auto summary = nlohmann::json::parse(std::ifstream(dir_ + "/external_a.json"));
+  EXPECT_EQ(summary["frames"], 8);
+  EXPECT_GT(summary["relocalized"].get<int>(), 0) << summary.dump();
+}
+
+}  // namespace
