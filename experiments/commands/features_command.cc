@@ -1,5 +1,6 @@
 // `duskmap features eval`: the real-image illumination benchmark of the
-// feature types on Oxford/HPatches-layout sequences (JSON + Markdown).
+// feature types on Oxford/HPatches-layout sequences, or on WxBS-layout pairs
+// scored by epipolar geometry (JSON + Markdown).
 // `duskmap features export`: a dataset's features in hloc's HDF5 layout, and
 // the list of its images for an external extractor (docs/features.md).
 #include <filesystem>
@@ -15,6 +16,7 @@
 #include "slam/core/json_fields.h"
 #include "slam/datasets/dataset_factory.h"
 #include "slam/engine/feature_export.h"
+#include "slam/features/epipolar_eval.h"
 #include "slam/features/sequence_eval.h"
 #include "slam/io/output_safety.h"
 
@@ -26,6 +28,7 @@ struct EvalArgs {
   std::string types = "surf,sift,brief,brisk,kaze,daisy,orb,akaze,freak";
   std::string config;
   std::string out_dir;
+  std::string layout = "auto";
   int threads = 1;
 };
 
@@ -46,23 +49,45 @@ void WriteFile(const std::filesystem::path& path, const std::string& text) {
 
 int RunEval(const EvalArgs& args) {
   SLAM_THROW_IF_NOT(ConfigError, args.threads >= 1) << "features eval: --threads must be >= 1";
+  SLAM_THROW_IF_NOT(ConfigError, args.layout == "auto" || args.layout == "homography" || args.layout == "pairs")
+      << "features eval: --layout must be auto, homography or pairs, got '" << args.layout << "'";
   cv::setNumThreads(args.threads);  // timings per core by default, like the benchmark
-  FeatureEvalOptions options;
-  options.types = SplitComma(args.types);
+  FeatureOptions features;
   if (!args.config.empty()) {
     JsonFields fields(ReadJsonFile(args.config), args.config);
-    options.features = ReadFeatureOptions(fields);
+    features = ReadFeatureOptions(fields);
   }
-  const auto sequences = FindHomographySequences(args.data);
-  std::cout << "features eval: " << sequences.size() << " sequence(s) in " << args.data << ", "
-            << options.types.size() << " type(s)\n";
-  const FeatureEvalResult result = EvaluateFeatures(sequences, options);
-  const std::string table = ToMarkdown(result);
+  std::string table;
+  nlohmann::json json;
+  const std::vector<CorrespondencePair> pairs =
+      args.layout == "homography" ? std::vector<CorrespondencePair>() : FindCorrespondencePairs(args.data);
+  SLAM_THROW_IF_NOT(InputError, args.layout != "pairs" || !pairs.empty())
+      << args.data << ": no pair folder (01.*, 02.*, corrs.txt) here or one or two levels down";
+  if (!pairs.empty()) {
+    EpipolarEvalOptions options;
+    options.types = SplitComma(args.types);
+    options.features = features;
+    std::cout << "features eval: " << pairs.size() << " pair(s) with hand-clicked correspondences in "
+              << args.data << ", " << options.types.size() << " type(s)\n";
+    const EpipolarEvalResult result = EvaluateOnCorrespondencePairs(pairs, options);
+    table = ToMarkdown(result);
+    json = ToJson(result);
+  } else {
+    FeatureEvalOptions options;
+    options.types = SplitComma(args.types);
+    options.features = features;
+    const auto sequences = FindHomographySequences(args.data);
+    std::cout << "features eval: " << sequences.size() << " sequence(s) in " << args.data << ", "
+              << options.types.size() << " type(s)\n";
+    const FeatureEvalResult result = EvaluateFeatures(sequences, options);
+    table = ToMarkdown(result);
+    json = ToJson(result);
+  }
   std::cout << table;
   if (!args.out_dir.empty()) {
     std::filesystem::create_directories(args.out_dir);
     const std::filesystem::path dir(args.out_dir);
-    WriteFile(dir / "features_eval.json", ToJson(result).dump(2) + "\n");
+    WriteFile(dir / "features_eval.json", json.dump(2) + "\n");
     WriteFile(dir / "features_eval.md", "Sequences: " + args.data + "\n\n" + table);
     std::cout << "wrote " << (dir / "features_eval.json").string() << " and "
               << (dir / "features_eval.md").string() << "\n";
@@ -130,10 +155,13 @@ RunFn SetupFeatures(CLI::App& command) {
   command.require_subcommand(1);
   auto args = std::make_shared<EvalArgs>();
   CLI::App* eval = command.add_subcommand(
-      "eval", "Repeatability, matching score, MMA and homography accuracy per feature type");
+      "eval", "Per feature type: repeatability, matching score, MMA and homography accuracy on sequences, or pairs solved by epipolar geometry on WxBS-style pairs");
   eval->add_option("--data", args->data,
-                   "sequence folder (img1 + imgN + H1toNp) or a folder of such folders")
+                   "sequence folder (img1 + imgN + H1toNp), pair folder (01.*, 02.*, corrs.txt: "
+                   "WxBS), or a folder of either (pairs also in category folders)")
       ->required();
+  eval->add_option("--layout", args->layout,
+                   "auto (pairs when any pair folder is found), homography, pairs");
   eval->add_option("--types", args->types, "comma-separated feature types");
   eval->add_option("--config", args->config, "JSON feature options (FeatureOptions)");
   eval->add_option("--threads", args->threads, "OpenCV threads (1: per-core timings)");

@@ -17,6 +17,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "tests/features/two_plane_pair.h"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -205,6 +207,22 @@ TEST_F(FeaturesCli, DeclaredH5ColumnInAnExperimentEqualsTheBuiltInColumn) {
   const Result type = RunDuskmap("run " + dir_ + "/other.json --output " + dir_ + "/other");
   EXPECT_NE(type.exit_code, 0);
   EXPECT_NE(type.output.find("'sift' cannot be declared"), std::string::npos) << type.output;
+}
+
+// `features eval` on WxBS-style pairs (01.*, 02.*, corrs.txt): epipolar
+// scoring, chosen automatically; --layout pairs on sequences is refused.
+TEST_F(FeaturesCli, EvalScoresPairsByEpipolarGeometry) {
+  duskmap::testing::TwoPlanePair().Write(dir_ + "/pairs/indoor/planes");
+  const Result eval = RunDuskmap("features eval --data " + dir_ + "/pairs --types orb --out " + dir_ + "/pair_eval");
+  ASSERT_EQ(eval.exit_code, 0) << eval.output;
+  EXPECT_NE(eval.output.find("1 pair(s) with hand-clicked correspondences"), std::string::npos) << eval.output;
+  const auto json = nlohmann::json::parse(std::ifstream(dir_ + "/pair_eval/features_eval.json"));
+  EXPECT_EQ(json["layout"], "pairs");
+  EXPECT_EQ(json["types"][0]["solved"], nlohmann::json({1, 1, 1}));
+  EXPECT_EQ(json["types"][0]["categories"]["indoor"]["pairs"], 1);
+  const Result wrong = RunDuskmap("features eval --layout pairs --data " + dir_ + "/data --types orb");
+  EXPECT_NE(wrong.exit_code, 0);
+  EXPECT_NE(wrong.output.find("no pair folder"), std::string::npos) << wrong.output;
 }
 
 // The worked example of docs/features.md: an external extractor (OpenCV's
