@@ -18,26 +18,14 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/features/two_plane_pair.h"
+#include "tests/testing/run_duskmap.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
-
-Result RunDuskmap(const std::string& args) {
-  Result result;
-  FILE* pipe = ::popen((std::string(DUSKMAP_EXE) + " " + args + " 2>&1").c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer;
-  while (size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
-  const int status = ::pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+using Result = duskmap::testing::CliResult;
+using duskmap::testing::RunDuskmap;
 
 std::vector<std::string> Lines(const std::string& path) {
   std::vector<std::string> lines;

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "slam/core/check.h"
+#include "tests/testing/error_of.h"
 #include "slam/io/dataset_reader.h"
 
 namespace duskmap::testing {
@@ -113,17 +114,6 @@ inline std::vector<RgbdFrame> ReadAllFrames(SessionReader& session) {
   std::vector<RgbdFrame> frames;
   while (std::optional<RgbdFrame> frame = session.Next()) frames.push_back(std::move(*frame));
   return frames;
-}
-
-// The message of the duskmap::Error that `fn` throws, or "" when none.
-template <typename Fn>
-std::string ErrorOf(Fn&& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
 }
 
 }  // namespace duskmap::testing

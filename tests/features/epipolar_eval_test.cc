@@ -14,6 +14,7 @@
 #include "slam/features/feature_extractor.h"
 #include "slam/features/h5_feature_file.h"
 #include "tests/features/test_images.h"
+#include "tests/testing/error_of.h"
 #include "tests/features/two_plane_pair.h"
 
 namespace duskmap {
@@ -27,15 +28,7 @@ fs::path TempRoot(const std::string& name) {
   return root;
 }
 
-template <typename Fn>
-std::string ErrorOf(Fn&& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::ErrorOf;
 
 TEST(SymmetricEpipolarDistance, MeanOfTheTwoPointToLineDistances) {
   // Pure translation along x with identity intrinsics: epipolar lines are rows.

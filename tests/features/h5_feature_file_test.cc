@@ -14,6 +14,7 @@
 #include "slam/features/feature_extractor.h"
 #include "slam/features/h5_extractor.h"
 #include "tests/features/test_images.h"
+#include "tests/testing/error_of.h"
 
 namespace duskmap {
 namespace {
@@ -25,15 +26,7 @@ std::string TempPath(const std::string& name) {
   return (root / name).string();
 }
 
-template <typename Fn>
-std::string ErrorOf(Fn&& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::ErrorOf;
 
 std::vector<cv::KeyPoint> SomeKeypoints(int n) {
   std::vector<cv::KeyPoint> keypoints;
