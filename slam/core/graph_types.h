@@ -20,6 +20,9 @@ enum class LinkType : int {
   kLoopClosure = 1,  // global loop closure from LCD (reference: GlobalClosure)
   kProximity = 2,    // proximity detection in space (reference: LocalSpaceClosure)
   kMerged = 3,       // re-attached by graph reduction (reference: NeighborMerged)
+  // Ties a node to the fixed root of a graph built only to check a
+  // constraint (the localization's odometry cache); never stored in a map.
+  kPrior = 4,
 };
 
 inline const char* LinkTypeName(LinkType type) {
@@ -28,6 +31,7 @@ inline const char* LinkTypeName(LinkType type) {
     case LinkType::kLoopClosure: return "loop_closure";
     case LinkType::kProximity: return "proximity";
     case LinkType::kMerged: return "merged";
+    case LinkType::kPrior: return "prior";
   }
   return "unknown";
 }

@@ -17,10 +17,6 @@ Information6d DiagonalInformation(double linear_sigma, double angular_sigma) {
   return information;
 }
 
-// Prior links tie the referenced map nodes to the fixed root; they are the
-// only merged-type links of the cache graph.
-constexpr LinkType kPriorLink = LinkType::kMerged;
-
 }  // namespace
 
 void OdometryCacheOptions::Check() const {
@@ -77,7 +73,14 @@ CacheValidationResult OdometryCache::Validate(NodeId node, const Rigid3d& map_fr
     frames_.back().links.push_back(added);
     return result;
   }
+  CheckGraph check = BuildCheckGraph(added);
+  if (!OptimizesWithinErrors(&check, &result)) return result;  // rejected
+  result.status = CacheValidation::kApplied;
+  frames_.back().links.push_back(added);
+  return result;
+}
 
+OdometryCache::CheckGraph OdometryCache::BuildCheckGraph(const CachedLink& added) const {
   // Graph ids: referenced map nodes first (in id order, so the oldest is the
   // fixed root), then the cached frames in time order.
   std::map<NodeId, NodeId> graph_id_of_node;
@@ -93,28 +96,29 @@ CacheValidationResult OdometryCache::Validate(NodeId node, const Rigid3d& map_fr
   NodeId next_id = 1;
   for (auto& [map_id, graph_id] : graph_id_of_node) graph_id = next_id++;
   const NodeId first_frame_id = next_id;
+  const auto frame_id = [first_frame_id](size_t i) { return first_frame_id + static_cast<NodeId>(i); };
 
-  PoseGraph graph;
+  CheckGraph check;
+  PoseGraph& graph = check.graph;
   for (const auto& [map_id, graph_id] : graph_id_of_node) {
     graph.AddNode(graph_id, 0, map_pose_of_node.at(map_id));
   }
-  for (size_t i = 0; i < frames_.size(); ++i) {
-    graph.AddNode(first_frame_id + static_cast<NodeId>(i), 0, frames_[i].odom_from_camera);
-  }
+  for (size_t i = 0; i < frames_.size(); ++i) graph.AddNode(frame_id(i), 0, frames_[i].odom_from_camera);
   const NodeId root = graph_id_of_node.begin()->second;
   const Rigid3d map_from_root = map_pose_of_node.begin()->second;
   const double prior_sigma = options_.prior_sigma;
   for (const auto& [map_id, graph_id] : graph_id_of_node) {
     if (graph_id == root) continue;
-    graph.AddLink({root, graph_id, kPriorLink,
-                   map_from_root.Inverse() * map_pose_of_node.at(map_id),
-                   DiagonalInformation(prior_sigma, prior_sigma)});
+    const Link prior{root, graph_id, LinkType::kPrior,
+                     map_from_root.Inverse() * map_pose_of_node.at(map_id),
+                     DiagonalInformation(prior_sigma, prior_sigma)};
+    graph.AddLink(prior);
+    check.priors.push_back(KeyOf(prior));
   }
   const Information6d odometry_information = DiagonalInformation(
       options_.odometry_linear_sigma_m, options_.odometry_angular_sigma_rad);
   for (size_t i = 0; i + 1 < frames_.size(); ++i) {
-    graph.AddLink({first_frame_id + static_cast<NodeId>(i),
-                   first_frame_id + static_cast<NodeId>(i + 1), LinkType::kOdometry,
+    graph.AddLink({frame_id(i), frame_id(i + 1), LinkType::kOdometry,
                    frames_[i].odom_from_camera.Inverse() * frames_[i + 1].odom_from_camera,
                    odometry_information});
   }
@@ -122,35 +126,26 @@ CacheValidationResult OdometryCache::Validate(NodeId node, const Rigid3d& map_fr
     std::vector<CachedLink> links = frames_[i].links;
     if (i + 1 == frames_.size()) links.push_back(added);
     for (const CachedLink& link : links) {
-      graph.AddLink({graph_id_of_node.at(link.node), first_frame_id + static_cast<NodeId>(i),
-                     LinkType::kLoopClosure, link.node_camera_from_query, link.information});
+      graph.AddLink({graph_id_of_node.at(link.node), frame_id(i), LinkType::kLoopClosure,
+                     link.node_camera_from_query, link.information});
     }
   }
+  check.added = {graph_id_of_node.at(added.node), frame_id(frames_.size() - 1), LinkType::kLoopClosure};
+  return check;
+}
 
+bool OdometryCache::OptimizesWithinErrors(CheckGraph* check, CacheValidationResult* result) const {
   PoseGraphOptimizerOptions optimizer;
   optimizer.max_iterations = options_.max_iterations;
   optimizer.max_error_ratio = 0.0;  // checked below, without the prior links
-  const LinkKey added_key{graph_id_of_node.at(node),
-                          first_frame_id + static_cast<NodeId>(frames_.size() - 1),
-                          LinkType::kLoopClosure};
-  const OptimizationSummary summary = OptimizePoseGraph(optimizer, {added_key}, &graph);
-  if (!summary.accepted()) return result;  // rejected: the solver failed
-
-  std::vector<LinkKey> priors;
-  for (const auto& [key, link] : graph.links()) {
-    if (key.type == kPriorLink) priors.push_back(key);
-  }
-  for (const LinkKey& key : priors) graph.RemoveLink(key);
-  const MaxGraphErrors errors = ComputeMaxGraphErrors(graph);
-  result.max_linear_ratio = errors.linear.found ? errors.linear.ratio : 0.0;
-  result.max_angular_ratio = errors.angular.found ? errors.angular.ratio : 0.0;
-  if (result.max_linear_ratio > options_.max_error_ratio ||
-      result.max_angular_ratio > options_.max_error_ratio) {
-    return result;
-  }
-  result.status = CacheValidation::kApplied;
-  frames_.back().links.push_back(added);
-  return result;
+  const OptimizationSummary summary = OptimizePoseGraph(optimizer, {check->added}, &check->graph);
+  if (!summary.accepted()) return false;  // the solver failed
+  for (const LinkKey& key : check->priors) check->graph.RemoveLink(key);
+  const MaxGraphErrors errors = ComputeMaxGraphErrors(check->graph);
+  result->max_linear_ratio = errors.linear.found ? errors.linear.ratio : 0.0;
+  result->max_angular_ratio = errors.angular.found ? errors.angular.ratio : 0.0;
+  return result->max_linear_ratio <= options_.max_error_ratio &&
+         result->max_angular_ratio <= options_.max_error_ratio;
 }
 
 }  // namespace duskmap

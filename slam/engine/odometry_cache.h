@@ -23,6 +23,7 @@
 
 #include "slam/core/graph_types.h"
 #include "slam/core/rigid3.h"
+#include "slam/graph/pose_graph.h"
 #include "slam/graph/pose_graph_optimizer.h"
 
 namespace duskmap {
@@ -81,6 +82,20 @@ class OdometryCache {
     Rigid3d odom_from_camera;
     std::vector<CachedLink> links;
   };
+
+  // The graph a validation optimises: the referenced map nodes (ids 1.., in
+  // node order, the first the fixed root, the others tied to it by priors),
+  // then the cached frames in time order, with their odometry links and
+  // localization links, `added` included on the last frame.
+  struct CheckGraph {
+    PoseGraph graph;
+    LinkKey added;                 // the link being validated
+    std::vector<LinkKey> priors;   // removed before the error check
+  };
+  CheckGraph BuildCheckGraph(const CachedLink& added) const;
+  // Optimises `check` and measures its largest error ratios without the
+  // priors into `result`; false when the solver fails or a ratio is too large.
+  bool OptimizesWithinErrors(CheckGraph* check, CacheValidationResult* result) const;
 
   OdometryCacheOptions options_;
   std::deque<CachedFrame> frames_;

@@ -21,7 +21,8 @@ bool IsLoopLink(LinkType type) {
 int TraversalRank(LinkType type) {
   switch (type) {
     case LinkType::kOdometry: return 0;
-    case LinkType::kMerged: return 1;
+    case LinkType::kMerged:
+    case LinkType::kPrior: return 1;
     case LinkType::kLoopClosure:
     case LinkType::kProximity: return 2;
   }

@@ -13,7 +13,8 @@ int LinkCost(LinkType type) {
     case LinkType::kOdometry:
     case LinkType::kMerged: return 1;
     case LinkType::kLoopClosure: return 0;
-    case LinkType::kProximity: return -1;
+    case LinkType::kProximity:
+    case LinkType::kPrior: return -1;  // priors exist only in check graphs, never here
   }
   return -1;
 }

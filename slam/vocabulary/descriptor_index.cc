@@ -294,187 +294,252 @@ struct WholeRowHamming {
   }
 };
 
-// Owns the rows and the index over them: KdForest (KD-tree kinds), LshTables
-// (LSH), FLANN (hierarchical: FLANN keeps pointers to the rows) or a linear
-// scan.
-class DescriptorIndex::Backend {
+namespace {
+
+// One nearest-neighbour structure over stored word rows (each kind below);
+// DescriptorIndex::Backend owns the row format and delegates the rest.
+class IndexBackend {
  public:
-  Backend(const DescriptorIndexOptions& options, DescriptorKind kind, int cols)
-      : options_(options), kind_(kind), cols_(cols),
-        index_kind_(kind == DescriptorKind::kFloat ? options.float_kind : options.binary_kind),
-        format_(WordRowFormatFor(kind, options.float_storage)),
-        row_bytes_(QueryRowBytes(format_, cols)),
-        stored_bytes_(WordRowBytes(format_, cols)),
-        encoded_(stored_bytes_) {
-    if (index_kind_ == IndexKind::kKdTree || index_kind_ == IndexKind::kBitKdTree) {
-      KdForestOptions o;
-      o.trees = options.kd_trees;
-      o.checks = options.checks;
-      o.leaf_size = options.kd_leaf_size;
-      o.rebuild_factor = options.rebalancing_factor;
-      o.seed = options.seed;
-      o.binary_distance = options.binary_distance;
-      forest_ = std::make_unique<KdForest>(o, format_, cols);
-    } else if (index_kind_ == IndexKind::kLsh) {
-      lsh_ = std::make_unique<LshTables>(options, cols);
-    }
+  virtual ~IndexBackend() = default;
+  virtual size_t size() const = 0;
+  virtual bool Contains(WordId word) const = 0;
+  virtual const uint8_t* StoredRow(WordId word) const = 0;
+  // `word` is positive and not held; `row` is a stored row, copied.
+  virtual void AddStored(WordId word, const uint8_t* row) = 0;
+  virtual bool Remove(WordId word) = 0;
+  // The (at most) two nearest words of one query row, nearest first.
+  virtual void SearchTwo(const uint8_t* query, std::vector<WordNeighbour>* out) const = 0;
+  virtual void Rebuild() = 0;
+  virtual int rebuild_count() const = 0;
+  virtual size_t MemoryBytes() const = 0;
+  // Only the KD-forest kinds compact their leaves, reserve ids and keep their
+  // state as bytes.
+  virtual void Compact() {}
+  virtual void ReserveIds(WordId) {}
+  virtual bool CanSaveState() const { return false; }
+  virtual void AppendState(std::vector<uint8_t>*) const {}
+  virtual bool RestoreState(const uint8_t*, size_t, const std::vector<WordId>&, const uint8_t*,
+                            std::string* problem) {
+    *problem = "this index kind is not restored from a stored state";
+    return false;
   }
+};
 
-  struct Row {
-    std::unique_ptr<uint8_t[]> descriptor;
-    size_t flann_id = 0;
-    size_t slot = 0;                    // linear only: position in linear_rows_
-  };
-
-  IndexKind index_kind() const { return index_kind_; }
-  size_t row_bytes() const { return row_bytes_; }
-  WordRowFormat format() const { return format_; }
-  size_t stored_row_bytes() const { return stored_bytes_; }
-  int rebuild_count() const { return forest_ ? forest_->rebuild_count() : rebuilds_; }
-  size_t size() const { return forest_ ? forest_->size() : rows_.size(); }
-
-  bool Contains(WordId w) const { return forest_ ? forest_->Contains(w) : rows_.count(w) != 0; }
-  const uint8_t* StoredRow(WordId w) const {
-    if (forest_) return forest_->Row(w);
-    if (index_kind_ == IndexKind::kLinear) return &linear_rows_[rows_.at(w).slot * stored_bytes_];
-    auto it = rows_.find(w);
-    SLAM_CHECK(it != rows_.end());
-    return it->second.descriptor.get();
+// kdtree / bit_kdtree: the own KD-forest.
+class ForestBackend : public IndexBackend {
+ public:
+  ForestBackend(const DescriptorIndexOptions& options, WordRowFormat format, int cols) {
+    KdForestOptions o;
+    o.trees = options.kd_trees;
+    o.checks = options.checks;
+    o.leaf_size = options.kd_leaf_size;
+    o.rebuild_factor = options.rebalancing_factor;
+    o.seed = options.seed;
+    o.binary_distance = options.binary_distance;
+    forest_ = std::make_unique<KdForest>(o, format, cols);
   }
-
-  void Add(WordId word, const uint8_t* extracted) {
-    if (format_ != WordRowFormat::kQuantized8) {  // stored as extracted
-      AddStored(word, extracted);
-      return;
-    }
-    SLAM_THROW_IF_NOT(InputError, EncodeWordRow(format_, extracted, cols_, encoded_.data()))
-        << "DescriptorIndex: word " << word << " has a non-finite descriptor value";
-    AddStored(word, encoded_.data());
+  size_t size() const override { return forest_->size(); }
+  bool Contains(WordId word) const override { return forest_->Contains(word); }
+  const uint8_t* StoredRow(WordId word) const override { return forest_->Row(word); }
+  void AddStored(WordId word, const uint8_t* row) override { forest_->Add(word, row); }
+  bool Remove(WordId word) override { return forest_->Remove(word); }
+  void SearchTwo(const uint8_t* query, std::vector<WordNeighbour>* out) const override {
+    // Searches of one index run on several threads (localizers sharing a map).
+    thread_local std::vector<KdNeighbour> found;
+    forest_->SearchTwo(query, &found);
+    for (const KdNeighbour& k : found) out->push_back({k.id, k.distance});
   }
-
-  void AddStored(WordId word, const uint8_t* data) {
-    SLAM_CHECK(word > 0 && !Contains(word));
-    if (forest_) {
-      forest_->Add(word, data);
-      return;
-    }
-    Row row;
-    if (index_kind_ == IndexKind::kLinear) {
-      row.slot = linear_words_.size();
-      linear_words_.push_back(word);
-      linear_rows_.insert(linear_rows_.end(), data, data + stored_bytes_);
-    } else if (lsh_) {
-      row.descriptor.reset(new uint8_t[stored_bytes_]);
-      std::copy(data, data + stored_bytes_, row.descriptor.get());
-      lsh_->Add(word, row.descriptor.get());
-      if (rows_.empty()) ++rebuilds_;  // a first build, as FLANN's kinds count it
-    } else {
-      row.descriptor.reset(new uint8_t[stored_bytes_]);
-      std::copy(data, data + stored_bytes_, row.descriptor.get());
-      row.flann_id = flann_to_word_.size();
-      flann_to_word_.push_back(word);
-      AddToFlann(FlannRow(row));
-    }
-    rows_.emplace(word, std::move(row));
-  }
-
-  bool Remove(WordId word) {
-    if (forest_) return forest_->Remove(word);
-    auto it = rows_.find(word);
-    if (it == rows_.end()) return false;
-    if (index_kind_ == IndexKind::kLinear) {
-      RemoveLinear(it->second.slot);
-      rows_.erase(it);
-      return true;
-    }
-    if (lsh_) {
-      lsh_->Remove(word, it->second.descriptor.get());
-      rows_.erase(it);
-      return true;
-    }
-    flann_->RemoveRow(it->second.flann_id);
-    flann_to_word_[it->second.flann_id] = kNoWord;
-    graveyard_.push_back(std::move(it->second));  // FLANN may still read it until a rebuild
-    rows_.erase(it);
-    if (rows_.empty()) Reset();
-    return true;
-  }
-
-  void Search(const uint8_t* queries, int n, std::vector<std::vector<WordNeighbour>>* out) const {
-    out->assign(n, {});
-    std::vector<KdNeighbour> found;
-    for (int q = 0; q < n; ++q) {
-      const uint8_t* query = queries + q * row_bytes_;
-      if (forest_) {
-        forest_->SearchTwo(query, &found);
-        for (const KdNeighbour& k : found) (*out)[q].push_back({k.id, k.distance});
-      } else if (rows_.empty()) {
-        continue;
-      } else if (index_kind_ == IndexKind::kLinear) {
-        SearchLinear(query, &(*out)[q]);
-      } else if (lsh_) {
-        lsh_->SearchTwo(query, &(*out)[q]);
-      } else {
-        SearchFlann(query, &(*out)[q]);
-      }
-    }
-  }
-
-  void Compact() {
-    if (forest_) forest_->CompactLeaves();
-  }
-  bool CanSaveState() const { return forest_ != nullptr; }
-  void AppendForestState(std::vector<uint8_t>* out) const { forest_->AppendState(out); }
-  bool RestoreForestState(const uint8_t* state, size_t size, const std::vector<WordId>& ids,
-                          const uint8_t* rows, std::string* problem) {
-    if (forest_ == nullptr || forest_->size() != 0) {
-      *problem = "this index kind (" + std::string(IndexKindName(index_kind_)) +
-                 ") is not restored from a stored state";
+  void Rebuild() override { forest_->Rebuild(); }
+  int rebuild_count() const override { return forest_->rebuild_count(); }
+  size_t MemoryBytes() const override { return forest_->MemoryBytes(); }
+  void Compact() override { forest_->CompactLeaves(); }
+  void ReserveIds(WordId max_id) override { forest_->ReserveIds(max_id); }
+  bool CanSaveState() const override { return true; }
+  void AppendState(std::vector<uint8_t>* out) const override { forest_->AppendState(out); }
+  bool RestoreState(const uint8_t* state, size_t size, const std::vector<WordId>& ids,
+                    const uint8_t* rows, std::string* problem) override {
+    if (forest_->size() != 0) {
+      *problem = "the index already holds words: a stored state restores only an empty one";
       return false;
     }
     return forest_->RestoreState(state, size, ids, rows, problem);
   }
-  void ReserveIds(WordId max_id) {
-    if (forest_) forest_->ReserveIds(max_id);
+
+ private:
+  std::unique_ptr<KdForest> forest_;
+};
+
+// linear: every row compared, contiguous rows.
+class LinearBackend : public IndexBackend {
+ public:
+  LinearBackend(const DescriptorIndexOptions& options, WordRowFormat format, int cols)
+      : format_(format), cols_(cols), stored_bytes_(WordRowBytes(format, cols)),
+        distance_(options.binary_distance) {}
+  size_t size() const override { return words_.size(); }
+  bool Contains(WordId word) const override { return slot_of_.count(word) != 0; }
+  const uint8_t* StoredRow(WordId word) const override {
+    return &rows_[slot_of_.at(word) * stored_bytes_];
+  }
+  void AddStored(WordId word, const uint8_t* row) override {
+    slot_of_.emplace(word, words_.size());
+    words_.push_back(word);
+    rows_.insert(rows_.end(), row, row + stored_bytes_);
+  }
+  bool Remove(WordId word) override {
+    auto it = slot_of_.find(word);
+    if (it == slot_of_.end()) return false;
+    const size_t slot = it->second;
+    const size_t last = words_.size() - 1;
+    if (slot != last) {
+      std::copy_n(&rows_[last * stored_bytes_], stored_bytes_, &rows_[slot * stored_bytes_]);
+      words_[slot] = words_[last];
+      slot_of_.at(words_[slot]) = slot;
+    }
+    words_.pop_back();
+    rows_.resize(last * stored_bytes_);
+    slot_of_.erase(it);
+    return true;
+  }
+  void SearchTwo(const uint8_t* query, std::vector<WordNeighbour>* out) const override {
+    NearestTwo nearest;
+    for (size_t s = 0; s < words_.size(); ++s) {
+      nearest.Offer({words_[s], WordDistance(format_, query, &rows_[s * stored_bytes_], cols_, distance_)});
+    }
+    nearest.AssignTo(out);
+  }
+  void Rebuild() override {}
+  int rebuild_count() const override { return 0; }
+  size_t MemoryBytes() const override {
+    const size_t n = words_.size();
+    return n * (sizeof(WordId) + sizeof(size_t) + 2 * sizeof(void*) + 16) +  // hash node, malloc
+           rows_.capacity() + words_.capacity() * sizeof(WordId);
   }
 
-  void Rebuild() {
-    if (forest_) {
-      forest_->Rebuild();
-      return;
+ private:
+  WordRowFormat format_;
+  int cols_;
+  size_t stored_bytes_;
+  BinaryDistance distance_;
+  std::vector<uint8_t> rows_;
+  std::vector<WordId> words_;
+  std::unordered_map<WordId, size_t> slot_of_;
+};
+
+// Rows held one allocation each (LSH and FLANN keep pointers to them).
+using OwnedRow = std::unique_ptr<uint8_t[]>;
+OwnedRow CopyRow(const uint8_t* row, size_t bytes) {
+  OwnedRow copy(new uint8_t[bytes]);
+  std::copy(row, row + bytes, copy.get());
+  return copy;
+}
+
+// lsh: the own multi-probe LshTables; words enter and leave the buckets at once.
+class LshBackend : public IndexBackend {
+ public:
+  LshBackend(const DescriptorIndexOptions& options, WordRowFormat format, int cols)
+      : stored_bytes_(WordRowBytes(format, cols)), tables_(options, cols) {}
+  size_t size() const override { return rows_.size(); }
+  bool Contains(WordId word) const override { return rows_.count(word) != 0; }
+  const uint8_t* StoredRow(WordId word) const override { return rows_.at(word).get(); }
+  void AddStored(WordId word, const uint8_t* row) override {
+    if (rows_.empty()) ++rebuilds_;  // a first build, as FLANN's kinds count it
+    OwnedRow& stored = rows_.emplace(word, CopyRow(row, stored_bytes_)).first->second;
+    tables_.Add(word, stored.get());
+  }
+  bool Remove(WordId word) override {
+    auto it = rows_.find(word);
+    if (it == rows_.end()) return false;
+    tables_.Remove(word, it->second.get());
+    rows_.erase(it);
+    return true;
+  }
+  void SearchTwo(const uint8_t* query, std::vector<WordNeighbour>* out) const override {
+    if (!rows_.empty()) tables_.SearchTwo(query, out);
+  }
+  void Rebuild() override {  // the tables are always up to date
+    if (!rows_.empty()) ++rebuilds_;
+  }
+  int rebuild_count() const override { return rebuilds_; }
+  size_t MemoryBytes() const override {
+    const size_t n = rows_.size();
+    return n * (stored_bytes_ + sizeof(OwnedRow) + sizeof(WordId) + 2 * sizeof(void*) + 16) +
+           tables_.MemoryBytes();  // + bucket entries: (word, row) per table
+  }
+
+ private:
+  size_t stored_bytes_;
+  LshTables tables_;
+  std::unordered_map<WordId, OwnedRow> rows_;
+  int rebuilds_ = 0;
+};
+
+// hierarchical: FLANN's hierarchical clustering over whole-row Hamming.
+class HierarchicalBackend : public IndexBackend {
+ public:
+  HierarchicalBackend(const DescriptorIndexOptions& options, WordRowFormat format, int cols)
+      : options_(options), cols_(cols), stored_bytes_(WordRowBytes(format, cols)) {}
+  size_t size() const override { return rows_.size(); }
+  bool Contains(WordId word) const override { return rows_.count(word) != 0; }
+  const uint8_t* StoredRow(WordId word) const override { return rows_.at(word).row.get(); }
+  void AddStored(WordId word, const uint8_t* data) override {
+    Row row{CopyRow(data, stored_bytes_), flann_to_word_.size()};
+    flann_to_word_.push_back(word);
+    AddToFlann(row.row.get());
+    rows_.emplace(word, std::move(row));
+  }
+  bool Remove(WordId word) override {
+    auto it = rows_.find(word);
+    if (it == rows_.end()) return false;
+    flann_->RemoveRow(it->second.flann_id);
+    flann_to_word_[it->second.flann_id] = kNoWord;
+    graveyard_.push_back(std::move(it->second.row));  // FLANN may still read it until a rebuild
+    rows_.erase(it);
+    if (rows_.empty()) Reset();
+    return true;
+  }
+  void SearchTwo(const uint8_t* query, std::vector<WordNeighbour>* out) const override {
+    if (rows_.empty()) return;
+    size_t ids[kNeighbours];
+    float dists[kNeighbours];
+    const int k = static_cast<int>(std::min<size_t>(kNeighbours, rows_.size()));
+    const int found = flann_->Knn(query, k, options_.checks, ids, dists);
+    for (int i = 0; i < found && i < k; ++i) {
+      if (ids[i] >= flann_to_word_.size()) continue;  // FLANN marks "none" with -1
+      const WordId w = flann_to_word_[ids[i]];
+      if (w == kNoWord) continue;
+      out->push_back({w, dists[i]});
     }
-    if (lsh_) {  // the tables are always up to date
-      if (!rows_.empty()) ++rebuilds_;
-      return;
-    }
+  }
+  void Rebuild() override {
     if (flann_ == nullptr) return;
     flann_->BuildNow();
     AfterBuild(rows_.size());
   }
-
-  size_t MemoryBytes() const {
-    if (forest_) return forest_->MemoryBytes();
+  int rebuild_count() const override { return rebuilds_; }
+  size_t MemoryBytes() const override {
     const size_t n = rows_.size() + graveyard_.size();
-    const size_t own_row = index_kind_ == IndexKind::kLinear ? 0 : stored_bytes_;  // linear: in linear_rows_
-    size_t bytes = n * (own_row + sizeof(Row) + 2 * sizeof(void*) + 16);  // + hash node, malloc
-    bytes += flann_to_word_.capacity() * sizeof(WordId) + linear_rows_.capacity() +
-             linear_words_.capacity() * sizeof(WordId);
-    if (lsh_) return bytes + lsh_->MemoryBytes();  // bucket entries: (word, row) per table
-    // FLANN: a row pointer and an id per row, plus the structure itself.
-    bytes += n * (sizeof(void*) + sizeof(size_t));
-    if (index_kind_ == IndexKind::kHierarchical) {  // an (index, pointer) pair per row per tree
-      bytes += n * options_.hierarchical_trees * 16;
-    }
-    return bytes;
+    // Own rows and hash nodes, then FLANN: a row pointer and an id per row and
+    // an (index, pointer) pair per row per tree.
+    return n * (stored_bytes_ + sizeof(Row) + 2 * sizeof(void*) + 16) +
+           flann_to_word_.capacity() * sizeof(WordId) + n * (sizeof(void*) + sizeof(size_t)) +
+           n * options_.hierarchical_trees * 16;
   }
 
  private:
-  const void* FlannRow(const Row& row) const { return row.descriptor.get(); }
+  struct Row {
+    OwnedRow row;
+    size_t flann_id = 0;
+  };
 
   void AddToFlann(const void* row) {
     // The row being added is not in rows_ yet, hence the + 1 below.
     if (flann_ == nullptr) {
-      flann_ = CreateFlann(row);
+      flann_ = std::make_unique<FlannHolderT<WholeRowHamming>>(
+          flann::HierarchicalClusteringIndexParams(options_.hierarchical_branching,
+                                                   flann::FLANN_CENTERS_RANDOM,
+                                                   options_.hierarchical_trees,
+                                                   options_.hierarchical_leaf_size),
+          cols_, row, options_.seed);
       AfterBuild(rows_.size() + 1);
       return;
     }
@@ -484,65 +549,12 @@ class DescriptorIndex::Backend {
     flann_->AddRow(row, static_cast<float>(options_.rebalancing_factor));
     if (rebuilds) AfterBuild(rows_.size() + 1);
   }
-
   void AfterBuild(size_t live_rows) {
     ++rebuilds_;
     size_at_build_ = live_rows;
     flann_rows_ = live_rows;
     graveyard_.clear();
   }
-
-  std::unique_ptr<FlannHolder> CreateFlann(const void* first_row) const {
-    const uint32_t seed = options_.seed;
-    switch (index_kind_) {
-      case IndexKind::kHierarchical:
-        return std::make_unique<FlannHolderT<WholeRowHamming>>(
-            flann::HierarchicalClusteringIndexParams(options_.hierarchical_branching,
-                                                     flann::FLANN_CENTERS_RANDOM,
-                                                     options_.hierarchical_trees,
-                                                     options_.hierarchical_leaf_size),
-            cols_, first_row, seed);
-      default:
-        break;
-    }
-    SLAM_CHECK(false);
-    return nullptr;
-  }
-
-  void SearchFlann(const uint8_t* query, std::vector<WordNeighbour>* out) const {
-    const void* q = query;
-    size_t ids[kNeighbours];
-    float dists[kNeighbours];
-    const int k = static_cast<int>(std::min<size_t>(kNeighbours, rows_.size()));
-    const int found = flann_->Knn(q, k, options_.checks, ids, dists);
-    for (int i = 0; i < found && i < k; ++i) {
-      if (ids[i] >= flann_to_word_.size()) continue;  // FLANN marks "none" with -1
-      const WordId w = flann_to_word_[ids[i]];
-      if (w == kNoWord) continue;
-      out->push_back({w, dists[i]});
-    }
-  }
-
-  void SearchLinear(const uint8_t* query, std::vector<WordNeighbour>* out) const {
-    NearestTwo nearest;
-    for (size_t s = 0; s < linear_words_.size(); ++s) {
-      nearest.Offer({linear_words_[s], WordDistance(format_, query, &linear_rows_[s * stored_bytes_],
-                                                    cols_, options_.binary_distance)});
-    }
-    nearest.AssignTo(out);
-  }
-
-  void RemoveLinear(size_t slot) {
-    const size_t last = linear_words_.size() - 1;
-    if (slot != last) {
-      std::copy_n(&linear_rows_[last * stored_bytes_], stored_bytes_, &linear_rows_[slot * stored_bytes_]);
-      linear_words_[slot] = linear_words_[last];
-      rows_.at(linear_words_[slot]).slot = slot;
-    }
-    linear_words_.pop_back();
-    linear_rows_.resize(last * stored_bytes_);
-  }
-
   // The last word left: drop FLANN entirely; the next Add starts a new index.
   void Reset() {
     flann_.reset();
@@ -553,24 +565,87 @@ class DescriptorIndex::Backend {
   }
 
   DescriptorIndexOptions options_;
-  DescriptorKind kind_;
+  int cols_;
+  size_t stored_bytes_;
+  std::unordered_map<WordId, Row> rows_;
+  std::vector<OwnedRow> graveyard_;
+  std::vector<WordId> flann_to_word_;  // FLANN id (insertion order) -> word, kNoWord once removed
+  std::unique_ptr<FlannHolder> flann_;
+  size_t size_at_build_ = 0;
+  size_t flann_rows_ = 0;  // rows FLANN holds, removed-but-not-yet-cleaned included
+  int rebuilds_ = 0;
+};
+
+std::unique_ptr<IndexBackend> MakeIndexBackend(const DescriptorIndexOptions& options, IndexKind kind,
+                                               WordRowFormat format, int cols) {
+  switch (kind) {
+    case IndexKind::kKdTree:
+    case IndexKind::kBitKdTree: return std::make_unique<ForestBackend>(options, format, cols);
+    case IndexKind::kLsh: return std::make_unique<LshBackend>(options, format, cols);
+    case IndexKind::kHierarchical: return std::make_unique<HierarchicalBackend>(options, format, cols);
+    case IndexKind::kLinear: return std::make_unique<LinearBackend>(options, format, cols);
+  }
+  SLAM_CHECK_MSG(false, "unknown index kind");
+  return nullptr;
+}
+
+}  // namespace
+
+// The row format (extracted rows encoded into stored ones) over one
+// IndexBackend of the configured kind.
+class DescriptorIndex::Backend {
+ public:
+  Backend(const DescriptorIndexOptions& options, DescriptorKind kind, int cols)
+      : cols_(cols),
+        index_kind_(kind == DescriptorKind::kFloat ? options.float_kind : options.binary_kind),
+        format_(WordRowFormatFor(kind, options.float_storage)),
+        row_bytes_(QueryRowBytes(format_, cols)),
+        stored_bytes_(WordRowBytes(format_, cols)),
+        encoded_(stored_bytes_),
+        index_(MakeIndexBackend(options, index_kind_, format_, cols)) {}
+
+  IndexKind index_kind() const { return index_kind_; }
+  size_t row_bytes() const { return row_bytes_; }
+  WordRowFormat format() const { return format_; }
+  size_t stored_row_bytes() const { return stored_bytes_; }
+  IndexBackend& index() { return *index_; }
+  const IndexBackend& index() const { return *index_; }
+
+  void Add(WordId word, const uint8_t* extracted) {
+    if (format_ != WordRowFormat::kQuantized8) {  // stored as extracted
+      AddStored(word, extracted);
+      return;
+    }
+    SLAM_THROW_IF_NOT(InputError, EncodeWordRow(format_, extracted, cols_, encoded_.data()))
+        << "DescriptorIndex: word " << word << " has a non-finite descriptor value";
+    AddStored(word, encoded_.data());
+  }
+  void AddStored(WordId word, const uint8_t* stored) {
+    SLAM_CHECK(word > 0 && !index_->Contains(word));
+    index_->AddStored(word, stored);
+  }
+  void Search(const uint8_t* queries, int n, std::vector<std::vector<WordNeighbour>>* out) const {
+    out->assign(n, {});
+    for (int q = 0; q < n; ++q) index_->SearchTwo(queries + q * row_bytes_, &(*out)[q]);
+  }
+  bool RestoreState(const uint8_t* state, size_t size, const std::vector<WordId>& ids,
+                    const uint8_t* rows, std::string* problem) {
+    if (!index_->CanSaveState()) {
+      *problem = "this index kind (" + std::string(IndexKindName(index_kind_)) +
+                 ") is not restored from a stored state";
+      return false;
+    }
+    return index_->RestoreState(state, size, ids, rows, problem);
+  }
+
+ private:
   int cols_;
   IndexKind index_kind_;
   WordRowFormat format_;
   size_t row_bytes_;     // extracted rows (queries)
   size_t stored_bytes_;  // stored rows
   std::vector<uint8_t> encoded_;  // scratch: one row being encoded
-  std::unordered_map<WordId, Row> rows_;
-  std::vector<Row> graveyard_;
-  std::vector<WordId> flann_to_word_;  // FLANN id (insertion order) -> word, kNoWord once removed
-  std::unique_ptr<FlannHolder> flann_;
-  size_t size_at_build_ = 0;
-  size_t flann_rows_ = 0;  // rows FLANN holds, removed-but-not-yet-cleaned included
-  int rebuilds_ = 0;
-  std::vector<uint8_t> linear_rows_;  // linear only: contiguous rows
-  std::vector<WordId> linear_words_;
-  std::unique_ptr<KdForest> forest_;  // kdtree / bit_kdtree
-  std::unique_ptr<LshTables> lsh_;    // lsh
+  std::unique_ptr<IndexBackend> index_;
 };
 
 DescriptorIndex::DescriptorIndex(const DescriptorIndexOptions& options, DescriptorKind kind,
@@ -590,27 +665,29 @@ void DescriptorIndex::Add(WordId word, const uint8_t* row) { backend_->Add(word,
 void DescriptorIndex::AddStored(WordId word, const uint8_t* stored_row) {
   backend_->AddStored(word, stored_row);
 }
-bool DescriptorIndex::Remove(WordId word) { return backend_->Remove(word); }
-bool DescriptorIndex::Contains(WordId word) const { return backend_->Contains(word); }
-const uint8_t* DescriptorIndex::StoredRow(WordId word) const { return backend_->StoredRow(word); }
+bool DescriptorIndex::Remove(WordId word) { return backend_->index().Remove(word); }
+bool DescriptorIndex::Contains(WordId word) const { return backend_->index().Contains(word); }
+const uint8_t* DescriptorIndex::StoredRow(WordId word) const {
+  return backend_->index().StoredRow(word);
+}
 void DescriptorIndex::SearchTwoNearest(const uint8_t* queries, int rows,
                                        std::vector<std::vector<WordNeighbour>>* out) const {
   backend_->Search(queries, rows, out);
 }
-void DescriptorIndex::Rebuild() { backend_->Rebuild(); }
-size_t DescriptorIndex::size() const { return backend_->size(); }
-int DescriptorIndex::rebuild_count() const { return backend_->rebuild_count(); }
-size_t DescriptorIndex::MemoryBytes() const { return backend_->MemoryBytes(); }
+void DescriptorIndex::Rebuild() { backend_->index().Rebuild(); }
+size_t DescriptorIndex::size() const { return backend_->index().size(); }
+int DescriptorIndex::rebuild_count() const { return backend_->index().rebuild_count(); }
+size_t DescriptorIndex::MemoryBytes() const { return backend_->index().MemoryBytes(); }
 
-void DescriptorIndex::Compact() { backend_->Compact(); }
+void DescriptorIndex::Compact() { backend_->index().Compact(); }
 
-void DescriptorIndex::ReserveIds(WordId max_id) { backend_->ReserveIds(max_id); }
+void DescriptorIndex::ReserveIds(WordId max_id) { backend_->index().ReserveIds(max_id); }
 
 namespace {
 constexpr uint32_t kIndexStateMagic = 0x31584944;  // "DIX1"
 }  // namespace
 
-bool DescriptorIndex::CanSaveState() const { return backend_->CanSaveState(); }
+bool DescriptorIndex::CanSaveState() const { return backend_->index().CanSaveState(); }
 
 std::vector<uint8_t> DescriptorIndex::SaveState() const {
   std::vector<uint8_t> state;
@@ -620,7 +697,7 @@ std::vector<uint8_t> DescriptorIndex::SaveState() const {
   // The row format and width are part of the forest's own shape check.
   w.Put<int32_t>(static_cast<int32_t>(index_kind()));
   w.Put<int32_t>(static_cast<int32_t>(kind_));
-  backend_->AppendForestState(&state);
+  backend_->index().AppendState(&state);
   return state;
 }
 
@@ -642,7 +719,7 @@ bool DescriptorIndex::RestoreState(const std::vector<uint8_t>& state,
     return false;
   }
   const size_t header = state.size() - r.remaining();
-  return backend_->RestoreForestState(state.data() + header, r.remaining(), ids, rows, problem);
+  return backend_->RestoreState(state.data() + header, r.remaining(), ids, rows, problem);
 }
 
 }  // namespace duskmap
