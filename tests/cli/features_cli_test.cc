@@ -50,14 +50,10 @@ class FeaturesCli : public ::testing::Test {
   static void SetUpTestSuite() {
     dir_ = (fs::temp_directory_path() / ("duskmap_features_cli_" + std::to_string(::getpid()))).string();
     fs::create_directories(dir_);
-    nlohmann::json config = nlohmann::json::parse(
-        std::ifstream(std::string(DUSKMAP_SOURCE_DIR) + "/configs/sunset_apartment.json"));
-    config["max_frames"] = 8;
-    config["sessions"] = nlohmann::json::array(
+    const Result generated = duskmap::testing::GenerateSmallApartment(
+        dir_, 8,
         {{{"name", "1"}, {"clock_time", "16:46"}, {"role", "mapping"}},
          {{"name", "A"}, {"clock_time", "16:51"}, {"role", "localization"}}});
-    std::ofstream(dir_ + "/gen.json") << config.dump();
-    const Result generated = RunDuskmap("generate --config " + dir_ + "/gen.json --output " + dir_ + "/data");
     ASSERT_EQ(generated.exit_code, 0) << generated.output;
   }
   static void TearDownTestSuite() { fs::remove_all(dir_); }

@@ -6,7 +6,10 @@
 
 #include <array>
 #include <cstdio>
+#include <fstream>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 namespace duskmap::testing {
 
@@ -25,6 +28,19 @@ inline CliResult RunDuskmap(const std::string& args) {
   const int status = ::pclose(pipe);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
+}
+
+// Generates the default apartment (configs/sunset_apartment.json) with
+// `max_frames` frames per session and the given sessions (objects with name,
+// clock_time, role) into `dir`/data, through `duskmap generate`.
+inline CliResult GenerateSmallApartment(const std::string& dir, int max_frames,
+                                        const nlohmann::json& sessions) {
+  nlohmann::json config = nlohmann::json::parse(
+      std::ifstream(std::string(DUSKMAP_SOURCE_DIR) + "/configs/sunset_apartment.json"));
+  config["max_frames"] = max_frames;
+  config["sessions"] = sessions;
+  std::ofstream(dir + "/gen.json") << config.dump();
+  return RunDuskmap("generate --config " + dir + "/gen.json --output " + dir + "/data");
 }
 
 }  // namespace duskmap::testing
