@@ -1,7 +1,5 @@
 #include "slam/engine/feature_export.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -46,18 +44,12 @@ FeatureExportSummary ExportFeatures(
   const bool write_h5 = !options.output_path.empty();
   const std::unique_ptr<FeatureExtractor> extractor =
       write_h5 ? CreateFeatureExtractor(features) : nullptr;
-  const std::string partial =
-      options.output_path + ".partial-" + std::to_string(::getpid());
-  std::unique_ptr<H5FeatureFile> file;
-  if (write_h5) {
-    file = std::make_unique<H5FeatureFile>(partial, H5FeatureFile::Mode::kCreate);
-    file->WriteAttribute(kFeatureExportAttribute, features.type);
-  }
   FeatureExportSummary summary;
   std::ostringstream list;
   double features_sum = 0.0;
   double extract_ms_sum = 0.0;
-  try {
+  // Every frame of the sessions into the image list and, when given, `file`.
+  auto export_sessions = [&](H5FeatureFile* file) {
     for (const std::string& session : sessions) {
       const std::unique_ptr<SessionReader> reader = dataset.OpenSession(session);
       int64_t frames = 0;
@@ -67,7 +59,7 @@ FeatureExportSummary ExportFeatures(
             << " has no image file (RTAB-Map databases hold images as blobs; export the image release)";
         const std::string group = session + "/" + frame->image_name;
         list << group << '\t' << fs::absolute(frame->image_file).lexically_normal().string() << '\n';
-        if (write_h5) {
+        if (file != nullptr) {
           Stopwatch watch;
           const FrameFeatures f = extractor->ExtractFrame(*frame);
           extract_ms_sum += watch.ElapsedMs();
@@ -80,19 +72,18 @@ FeatureExportSummary ExportFeatures(
       ++summary.sessions;
       if (progress) progress(session, frames);
     }
-    if (write_h5) {
-      file->Close();
-      file.reset();
-      std::error_code error;
-      fs::rename(partial, options.output_path, error);
-      SLAM_THROW_IF_NOT(InputError, !error) << options.output_path << ": " << error.message();
-      summary.output_bytes = static_cast<int64_t>(fs::file_size(options.output_path));
-    }
-  } catch (...) {
-    file.reset();
-    std::error_code ignored;
-    if (write_h5) fs::remove(partial, ignored);
-    throw;
+  };
+  if (write_h5) {
+    // Written beside the output and renamed onto it once complete.
+    WriteFileAtomicallyAt(options.output_path, [&](const std::string& partial) {
+      H5FeatureFile file(partial, H5FeatureFile::Mode::kCreate);
+      file.WriteAttribute(kFeatureExportAttribute, features.type);
+      export_sessions(&file);
+      file.Close();
+    });
+    summary.output_bytes = static_cast<int64_t>(fs::file_size(options.output_path));
+  } else {
+    export_sessions(nullptr);
   }
   if (!options.image_list_path.empty()) {
     WriteFileAtomically(options.image_list_path, [&](std::ostream& out) { out << list.str(); });

@@ -14,6 +14,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "slam/core/check.h"
+#include "slam/features/eval_image.h"
 #include "slam/core/timer.h"
 #include "slam/features/feature_extractor.h"
 
@@ -53,12 +54,6 @@ double Median(std::vector<double> values) {
   const double upper = values[middle];
   const double lower = *std::max_element(values.begin(), values.begin() + middle);
   return 0.5 * (lower + upper);
-}
-
-cv::Mat ReadImage(const std::string& path) {
-  cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
-  SLAM_THROW_IF_NOT(InputError, !image.empty()) << path << ": cannot read image";
-  return image;
 }
 
 // Ratio-test matches first -> second.
@@ -191,7 +186,7 @@ EpipolarEvalResult EvaluateOnCorrespondencePairs(const std::vector<Correspondenc
   for (const CorrespondencePair& pair : pairs) result.pairs.push_back(pair.name);
   std::vector<std::pair<cv::Mat, cv::Mat>> images;
   for (const CorrespondencePair& pair : pairs) {
-    images.emplace_back(ReadImage(pair.first_path), ReadImage(pair.second_path));
+    images.emplace_back(ReadEvalImage(pair.first_path), ReadEvalImage(pair.second_path));
     CheckInside(pair, images.back().first.size(), images.back().second.size());
   }
   for (const std::string& type : options.types) {

@@ -18,12 +18,8 @@ H5FeatureExtractor::H5FeatureExtractor(const H5FeatureOptions& options, int max_
   SLAM_THROW_IF_NOT(ConfigError, !options_.path.empty())
       << "features.h5.path: features of type h5 need the .h5 file (or folder of <session>.h5)";
   std::error_code error;
-  const fs::file_status status = fs::status(options_.path, error);
-  SLAM_THROW_IF_NOT(InputError, status.type() != fs::file_type::not_found)
-      << options_.path << ": feature file not found";
-  SLAM_THROW_IF_NOT(InputError, !error) << options_.path << ": " << error.message();
-  per_session_files_ = status.type() == fs::file_type::directory;
-  if (!per_session_files_) {
+  per_session_files_ = fs::is_directory(options_.path, error);
+  if (!per_session_files_) {  // H5FeatureFile names a missing, unreadable or foreign file
     files_[""] = std::make_unique<H5FeatureFile>(options_.path, H5FeatureFile::Mode::kRead);
   }
 }

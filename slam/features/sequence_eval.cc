@@ -9,6 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "slam/core/check.h"
+#include "slam/features/eval_image.h"
 #include "slam/core/timer.h"
 #include "slam/features/feature_extractor.h"
 
@@ -37,12 +38,6 @@ cv::Matx33d ReadHomography(const fs::path& path) {
   return h;
 }
 
-cv::Mat ReadImage(const std::string& path) {
-  cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
-  SLAM_THROW_IF_NOT(InputError, !image.empty()) << path << ": cannot read image";
-  return image;
-}
-
 double Mean(double sum, int n) { return n == 0 ? 0.0 : sum / n; }
 
 TypeSummary EvaluateType(const std::vector<HomographySequence>& sequences,
@@ -64,10 +59,10 @@ TypeSummary EvaluateType(const std::vector<HomographySequence>& sequences,
     return f;
   };
   for (const HomographySequence& seq : sequences) {
-    const cv::Mat reference = ReadImage(seq.reference_path);
+    const cv::Mat reference = ReadEvalImage(seq.reference_path);
     const FrameFeatures reference_features = extract(reference);
     for (size_t t = 0; t < seq.target_paths.size(); ++t) {
-      const cv::Mat target = ReadImage(seq.target_paths[t]);
+      const cv::Mat target = ReadEvalImage(seq.target_paths[t]);
       PairRecord record;
       record.sequence = seq.name;
       record.target_index = static_cast<int>(t) + 2;

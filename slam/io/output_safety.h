@@ -86,4 +86,12 @@ class FolderLock {
 // `path` is left as it was.
 void WriteFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 
+// The same for writers that need a file name (HDF5): `write` creates and
+// closes the file at the partial path it is given; it is then flushed to
+// disk and renamed onto `path`. An exception from `write` removes the partial
+// file and propagates; a failed flush or rename is an InputError naming
+// `path`. An existing file at `path` is left as it was on any failure.
+void WriteFileAtomicallyAt(const std::string& path,
+                           const std::function<void(const std::string& partial_path)>& write);
+
 }  // namespace duskmap
