@@ -508,7 +508,10 @@ bool IsDuskmapMapFile(const std::string& path) {
   }
 }
 
-void SaveMap(const Map& map, const std::string& path) {
+void SaveMap(const Map& map, const std::string& path, const MapSaveOptions& options) {
+  auto reached = [&](MapSaveStep step) {
+    if (options.after_step) options.after_step(step);
+  };
   for (const auto& [id, node] : map.nodes()) {
     SLAM_THROW_IF_NOT(InputError, !node.features.has_shared_rows())
         << path << ": node " << id
@@ -530,6 +533,7 @@ void SaveMap(const Map& map, const std::string& path) {
       // the fsync before the rename.
       db.Execute("PRAGMA journal_mode=OFF; PRAGMA synchronous=OFF;");
       db.Execute("BEGIN");
+      reached(MapSaveStep::kTemporaryCreated);
       db.Execute(kSchema);
       db.Execute(mapdb::kChecksumsSchema);
       WriteMeta(db, map);
@@ -538,9 +542,12 @@ void SaveMap(const Map& map, const std::string& path) {
       WriteLinksAndWords(db, map);
       WriteWordIndex(db, map);
       WriteChecksums(db);
+      reached(MapSaveStep::kTablesWritten);
       db.Execute("COMMIT");
     }
+    reached(MapSaveStep::kCommitted);
     FsyncPath(temp, /*directory=*/false);
+    reached(MapSaveStep::kFlushed);
     SLAM_THROW_IF_NOT(InputError, std::rename(temp.c_str(), path.c_str()) == 0)
         << path << ": cannot replace the map file: " << std::strerror(errno);
   } catch (const Error&) {
@@ -548,6 +555,7 @@ void SaveMap(const Map& map, const std::string& path) {
     throw;
   }
   FsyncPath(DirectoryOf(path), /*directory=*/true);
+  reached(MapSaveStep::kRenamed);
 }
 
 namespace {

@@ -21,6 +21,7 @@
 // rows as stored; a flipped bit in any value fails its table's check).
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include "slam/map/map.h"
@@ -55,8 +56,20 @@ struct MapLoadOptions {
 // `--overwrite` may replace.
 bool IsDuskmapMapFile(const std::string& path);
 
-// Throws InputError naming the path when the file cannot be written.
-void SaveMap(const Map& map, const std::string& path);
+// The steps of a save, in order: the temporary file "<path>.saving" is
+// created and its transaction begun, its tables written, the transaction
+// committed, the file flushed to disk, renamed onto `path`.
+enum class MapSaveStep { kTemporaryCreated, kTablesWritten, kCommitted, kFlushed, kRenamed };
+
+struct MapSaveOptions {
+  // Called after each step (tests: a process killed at a chosen step).
+  std::function<void(MapSaveStep)> after_step;
+};
+
+// Throws InputError naming the path when the file cannot be written. A save
+// that fails or is killed at any step leaves the previous file at `path` (or
+// none) and at most a stale "<path>.saving", which the next save removes.
+void SaveMap(const Map& map, const std::string& path, const MapSaveOptions& options = {});
 
 Map LoadMap(const std::string& path, const MapLoadOptions& options = MapLoadOptions());
 

@@ -5,11 +5,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <random>
-#include <thread>
 
 #include <gtest/gtest.h>
 
@@ -156,43 +154,46 @@ TEST_F(MapStoreTest, SaveOverwritesAndIgnoresStaleTemporary) {
   ExpectMapsEqual(second, LoadMap(path_));
 }
 
+// A process killed (SIGKILL, as by the OOM killer or a user) right after
+// each step of a save: before the rename the previous map loads unchanged,
+// after it the new one loads complete, and the next save still succeeds.
+// The kill comes from the save's own step hook, so no step is left to chance.
 TEST_F(MapStoreTest, KillDuringSaveLeavesPreviousMapIntact) {
   const Map previous = testing::MakeTestMap(3);
-  SaveMap(previous, path_);
-  const Map big = testing::MakeTestMap(120, 600, false, 5);  // ~37 MB of descriptors
-  int killed_mid_save = 0;
-  for (int attempt = 0; attempt < 6 && killed_mid_save < 2; ++attempt) {
-    fs::remove(path_ + ".saving");  // left by the previous attempt's kill
+  const Map next = testing::MakeTestMap(20, 200, false, 5);
+  for (const MapSaveStep step : {MapSaveStep::kTemporaryCreated, MapSaveStep::kTablesWritten,
+                                 MapSaveStep::kCommitted, MapSaveStep::kFlushed,
+                                 MapSaveStep::kRenamed}) {
+    SCOPED_TRACE(static_cast<int>(step));
+    SaveMap(previous, path_);
     const pid_t child = ::fork();
     ASSERT_GE(child, 0);
     if (child == 0) {
+      MapSaveOptions options;
+      options.after_step = [step](MapSaveStep reached) {
+        if (reached == step) ::raise(SIGKILL);
+      };
       try {
-        SaveMap(big, path_);
+        SaveMap(next, path_, options);
       } catch (...) {
         ::_exit(2);
       }
-      ::_exit(0);
+      ::_exit(0);  // not reached: the hook kills the process
     }
-    // Kill as soon as the temporary file appears, plus a growing delay.
-    const auto start = std::chrono::steady_clock::now();
-    while (!fs::exists(path_ + ".saving") &&
-           std::chrono::steady_clock::now() - start < std::chrono::seconds(10)) {
-      std::this_thread::sleep_for(std::chrono::microseconds(200));
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5 * attempt));
-    ::kill(child, SIGKILL);
     int status = 0;
-    ::waitpid(child, &status, 0);
-    const Map loaded = LoadMap(path_);
-    if (fs::exists(path_ + ".saving")) {  // the rename never happened
-      ++killed_mid_save;
-      ExpectMapsEqual(previous, loaded);
-    } else {  // the child finished first: the new map must be complete
-      ExpectMapsEqual(big, loaded);
-      SaveMap(previous, path_);
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) << "status " << status;
+    if (step == MapSaveStep::kRenamed) {
+      EXPECT_FALSE(fs::exists(path_ + ".saving"));
+      ExpectMapsEqual(next, LoadMap(path_));
+    } else {
+      EXPECT_TRUE(fs::exists(path_ + ".saving"));  // left behind; the next save removes it
+      ExpectMapsEqual(previous, LoadMap(path_));
     }
+    SaveMap(next, path_);
+    EXPECT_FALSE(fs::exists(path_ + ".saving"));
+    ExpectMapsEqual(next, LoadMap(path_));
   }
-  EXPECT_GE(killed_mid_save, 1) << "the save always finished before the kill";
 }
 
 TEST_F(MapStoreTest, DifferentFeatureTypeIsRejected) {
