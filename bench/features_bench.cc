@@ -5,7 +5,9 @@
 // (the reference measured single-threaded too). Report medians:
 //   build-feat/bench/features_bench --benchmark_repetitions=7
 //       --benchmark_report_aggregates_only=true
-// SuperPoint is timed when DUSKMAP_SUPERPOINT_ONNX names a model file.
+// SuperPoint is timed when DUSKMAP_SUPERPOINT_ONNX names a model file, the
+// generic onnx type when DUSKMAP_ONNX_FEATURES names a JSON file of
+// features.onnx options (its model and contract).
 // ImportH5: the h5 type reading one frame's features (1000 keypoints with
 // 128-D float32 or 32-byte binary descriptors and scores, hloc's layout) from
 // a 100-frame file, with 3D points from a 640x480 depth image.
@@ -61,6 +63,10 @@ void BM_Extract(benchmark::State& state, const std::string& type) {
   FeatureOptions options;
   options.type = type;
   if (type == "superpoint") options.superpoint.model_path = std::getenv("DUSKMAP_SUPERPOINT_ONNX");
+  if (type == "onnx") {
+    const std::string path = std::getenv("DUSKMAP_ONNX_FEATURES");
+    ReadOnnxFeatureOptions(JsonFields(ReadJsonFile(path), path), &options.onnx);
+  }
   const auto extractor = CreateFeatureExtractor(options);
   size_t keypoints = 0;
   for (auto _ : state) {
@@ -156,6 +162,7 @@ const bool kRegistered = [] {
   benchmark::RegisterBenchmark("ImportH5/binary32", BM_ImportH5, true)->Unit(benchmark::kMillisecond);
   for (const std::string& type : FeatureTypeNames()) {
     if (type == "superpoint" && std::getenv("DUSKMAP_SUPERPOINT_ONNX") == nullptr) continue;
+    if (type == "onnx" && std::getenv("DUSKMAP_ONNX_FEATURES") == nullptr) continue;
     if (type == "h5") continue;  // imported, not detected: ImportH5 above
     benchmark::RegisterBenchmark(("Extract/" + type).c_str(), BM_Extract, type)
         ->Unit(benchmark::kMillisecond)

@@ -14,6 +14,7 @@
 #include "slam/core/check.h"
 #include "slam/core/timer.h"
 #include "slam/datasets/dataset_factory.h"
+#include "slam/engine/feature_options_json.h"
 #include "slam/engine/record_io.h"
 #include "slam/engine/session_runs.h"
 #include "slam/io/output_safety.h"
@@ -131,7 +132,9 @@ RunFn SetupLocalize(CLI::App& command) {
   command.add_option("--session", args->sessions,
                      "session(s) to localize, each against the same loaded map")
       ->required();
-  command.add_option("--config", args->config, "engine options (JSON); the map's feature type wins");
+  command.add_option("--config", args->config,
+                     "engine options (JSON); the map's feature type wins. Without it, the "
+                     "features are made as the map's were (its stored feature options)");
   command.add_option("--records", args->records,
                      "per-frame records (.jsonl or .csv); with several sessions the path "
                      "must contain {session}");
@@ -160,6 +163,9 @@ RunFn SetupLocalize(CLI::App& command) {
                 << " was built with '" << map.metadata().feature_type << "'\n";
     }
     options.features.type = map.metadata().feature_type;
+    if (args->config.empty()) {  // every feature option as the map was built (h5 file, onnx model, ...)
+      options.features = FeatureOptionsOfMap(map.metadata().feature_parameters_json, args->map);
+    }
     options.Check();
     DatasetReadOptions read;
     read.allow_unordered = args->allow_unordered;

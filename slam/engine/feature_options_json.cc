@@ -1,5 +1,8 @@
 #include "slam/engine/feature_options_json.h"
 
+#include "slam/core/check.h"
+#include "slam/core/json_fields.h"
+
 namespace duskmap {
 
 nlohmann::json FeatureOptionsToJson(const FeatureOptions& o) {
@@ -51,9 +54,40 @@ nlohmann::json FeatureOptionsToJson(const FeatureOptions& o) {
        {{"model_path", o.superpoint.model_path}, {"threshold", o.superpoint.threshold},
         {"nms_radius_px", o.superpoint.nms_radius_px},
         {"border_px", o.superpoint.border_px}}},
+      {"onnx",
+       {{"model_path", o.onnx.model_path}, {"contract", o.onnx.contract},
+        {"input_color", o.onnx.input_color}, {"input_scale", o.onnx.input_scale},
+        {"input_mean", o.onnx.input_mean}, {"input_std", o.onnx.input_std},
+        {"input_multiple_px", o.onnx.input_multiple_px},
+        {"scores_output", o.onnx.scores_output},
+        {"descriptors_output", o.onnx.descriptors_output},
+        {"keypoints_output", o.onnx.keypoints_output},
+        {"descriptor_dims", o.onnx.descriptor_dims}, {"score_layout", o.onnx.score_layout},
+        {"cell_size_px", o.onnx.cell_size_px}, {"dustbin", o.onnx.dustbin},
+        {"score_activation", o.onnx.score_activation},
+        {"descriptor_stride_px", o.onnx.descriptor_stride_px},
+        {"nms_radius_px", o.onnx.nms_radius_px}, {"threshold", o.onnx.threshold},
+        {"border_px", o.onnx.border_px},
+        {"normalize_descriptors", o.onnx.normalize_descriptors},
+        {"descriptors_layout", o.onnx.descriptors_layout},
+        {"keypoint_origin", o.onnx.keypoint_origin}}},
       {"h5",
        {{"path", o.h5.path}, {"descriptor_kind", o.h5.descriptor_kind},
         {"keypoint_origin", o.h5.keypoint_origin}}}};
+}
+
+FeatureOptions FeatureOptionsOfMap(const std::string& feature_parameters_json,
+                                   const std::string& map_path) {
+  const std::string where = map_path + ": feature_parameters";
+  nlohmann::json json;
+  try {
+    json = nlohmann::json::parse(feature_parameters_json);
+  } catch (const nlohmann::json::exception&) {
+    SLAM_THROW(ConfigError) << where << ": not JSON (the map is damaged; rebuild it)";
+  }
+  SLAM_THROW_IF_NOT(ConfigError, json.is_object()) << where << ": not a JSON object (rebuild the map)";
+  JsonFields fields(json, where);
+  return ReadFeatureOptions(fields);
 }
 
 }  // namespace duskmap

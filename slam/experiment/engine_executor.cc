@@ -96,8 +96,7 @@ double WriteGraphAndAte(const Map& map, const fs::path& graph_file) {
 
 EngineOptions EngineOptionsForFeature(const EngineOptions& base, const FeatureSetup& setup) {
   EngineOptions options = base;
-  options.features.type = setup.extractor;
-  if (setup.extractor == "h5") options.features.h5 = setup.h5;  // a declared column's file
+  setup.ApplyTo(&options.features);  // a declared column's file or model too
   // The column decides the matcher (SP: NNDR, SG: SuperGlue on the same
   // SuperPoint features); the engine config supplies the SuperGlue model.
   options.matcher.type = setup.matcher;
@@ -161,8 +160,7 @@ void EngineJobExecutor::Extract(const Job& job, const fs::path& job_dir) {
   }
   EngineOptions options = engine_;
   const FeatureSetup& setup = experiment_.FeatureSetupOfCache(job.extractor);
-  options.features.type = setup.extractor;
-  if (setup.extractor == "h5") options.features.h5 = setup.h5;
+  setup.ApplyTo(&options.features);
   options.features.Check();
   const std::unique_ptr<FeatureExtractor> extractor = CreateFeatureExtractor(options.features);
   FeatureCacheWriter writer(job_dir / kFeatureCacheFile, job.extractor, reader->info());

@@ -30,7 +30,8 @@ std::vector<ConsecutivePair> ReadPairs(const nlohmann::json& json, const std::st
 }
 
 // The "features" array: known column codes as strings, declared columns as
-// objects {"code", "type": "h5", "path", "descriptor_kind", "keypoint_origin"}.
+// objects {"code", "type": "h5", "path", "descriptor_kind", "keypoint_origin"}
+// or {"code", "type": "onnx", "model_path", <other features.onnx keys>}.
 void ReadFeatures(JsonFields& root, const std::filesystem::path& base, ExperimentOptions* options) {
   const nlohmann::json& features = root.Raw("features");
   const std::string where = root.where() + ".features";
@@ -49,15 +50,23 @@ void ReadFeatures(JsonFields& root, const std::filesystem::path& base, Experimen
     std::string type;
     column.ReadRequired("code", &setup.label);
     column.ReadRequired("type", &type);
-    SLAM_THROW_IF_NOT(ConfigError, type == "h5")
+    SLAM_THROW_IF_NOT(ConfigError, type == "h5" || type == "onnx")
         << at << ".type: '" << type
-        << "' cannot be declared (h5 imports a file; built-in types are listed by code: SU, SI, ...)";
-    column.ReadRequired("path", &setup.h5.path);
-    column.Read("descriptor_kind", &setup.h5.descriptor_kind);
-    column.Read("keypoint_origin", &setup.h5.keypoint_origin);
-    column.RejectUnknown();
-    setup.h5.path = ResolveRelative(setup.h5.path, base);
-    setup.extractor = "h5";
+        << "' cannot be declared (h5 imports a file, onnx runs a model; built-in types are "
+           "listed by code: SU, SI, ...)";
+    if (type == "h5") {
+      column.ReadRequired("path", &setup.h5.path);
+      column.Read("descriptor_kind", &setup.h5.descriptor_kind);
+      column.Read("keypoint_origin", &setup.h5.keypoint_origin);
+      column.RejectUnknown();
+      setup.h5.path = ResolveRelative(setup.h5.path, base);
+    } else {
+      SLAM_THROW_IF_NOT(ConfigError, column.Has("model_path"))
+          << at << ": missing key 'model_path'";
+      ReadOnnxFeatureOptions(column, &setup.onnx);
+      setup.onnx.model_path = ResolveRelative(setup.onnx.model_path, base);
+    }
+    setup.extractor = type;
     setup.matcher = "nndr";
     options->features.push_back(setup.label);
     options->declared_features.push_back(setup);
@@ -67,7 +76,13 @@ void ReadFeatures(JsonFields& root, const std::filesystem::path& base, Experimen
 }  // namespace
 
 std::string FeatureSetup::CacheName() const {
-  return extractor == "h5" ? "h5-" + label : extractor;
+  return IsDeclared() ? extractor + "-" + label : extractor;
+}
+
+void FeatureSetup::ApplyTo(FeatureOptions* features) const {
+  features->type = extractor;
+  if (extractor == "h5") features->h5 = h5;
+  if (extractor == "onnx") features->onnx = onnx;
 }
 
 const FeatureSetup& ExperimentOptions::FeatureSetupOf(const std::string& label) const {
@@ -118,7 +133,8 @@ void ExperimentOptions::Check() const {
           << known.extractor << "); choose another code";
     }
     try {
-      declared.h5.Check();
+      if (declared.extractor == "h5") declared.h5.Check();
+      if (declared.extractor == "onnx") declared.onnx.Check();
     } catch (const ConfigError& e) {
       SLAM_THROW(ConfigError) << "features: '" << declared.label << "': " << e.what();
     }
@@ -215,9 +231,8 @@ void CheckSessionsExist(const ExperimentOptions& options, const std::vector<std:
 void CheckDeclaredFeatureFiles(const ExperimentOptions& options) {
   for (const FeatureSetup& setup : options.declared_features) {
     FeatureOptions features;
-    features.type = setup.extractor;
-    features.h5 = setup.h5;
-    CreateFeatureExtractor(features);  // the h5 type opens its file here
+    setup.ApplyTo(&features);
+    CreateFeatureExtractor(features);  // h5 opens its file, onnx loads and checks its model
   }
 }
 

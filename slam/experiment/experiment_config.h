@@ -19,14 +19,20 @@ struct FeatureSetup {
   std::string extractor;  // extractor factory name: "surf", "sift", ..., "h5"
   std::string matcher;    // "nndr" or "superglue"
   bool needs_model = false;  // SuperPoint / SuperGlue need an ONNX model file
-  // A column the experiment config declares, with features imported from a
-  // file in hloc's layout (extractor "h5"); unused by the built-in columns.
+  // A column the experiment config declares: features imported from a file
+  // in hloc's layout (extractor "h5") or detected by an ONNX model with its
+  // declared contract (extractor "onnx"); unused by the built-in columns.
   H5FeatureOptions h5;
+  OnnxFeatureOptions onnx;
 
   // The name of the column's extract jobs and feature caches: the extractor
-  // for built-in columns (SP and SG share SuperPoint's), "h5-<label>" for a
-  // declared one (two declared columns never share a cache).
+  // for built-in columns (SP and SG share SuperPoint's), "<extractor>-<label>"
+  // for a declared one (two declared columns never share a cache).
   std::string CacheName() const;
+  bool IsDeclared() const { return extractor == "h5" || extractor == "onnx"; }
+  // Sets the column's extractor (and a declared column's file or model
+  // options) on `features`, whose other options stay.
+  void ApplyTo(FeatureOptions* features) const;
 };
 
 // The known feature columns (paper's eight plus ORB, AKAZE, FREAK).
@@ -45,6 +51,8 @@ struct ExperimentOptions {
   std::vector<std::string> features;   // FeatureSetup labels, e.g. {"SU", "SI", "MY"}
   // Columns the config declares beside the known ones, e.g.
   //   {"code": "MY", "type": "h5", "path": "feats/disk.h5", "descriptor_kind": "float"}
+  //   {"code": "XF", "type": "onnx", "model_path": "models/xfeat.onnx", ...}
+  // (an onnx column's other keys are features.onnx's: feature_options.h)
   std::vector<FeatureSetup> declared_features;
   std::vector<MapSpec> maps;
   std::vector<std::string> localization_sessions;
@@ -71,8 +79,9 @@ struct ExperimentOptions {
 // against the config file's folder. Throws ConfigError("<file>...: <problem>").
 ExperimentOptions ReadExperimentOptions(const std::string& path);
 
-// Opens the file (or checks the folder) of every declared h5 column, so that a
-// missing or foreign file fails before any job runs: InputError naming it.
+// Opens the file (or checks the folder) of every declared h5 column and loads
+// and checks the model of every declared onnx column, so that a missing or
+// foreign file fails before any job runs: InputError naming it.
 void CheckDeclaredFeatureFiles(const ExperimentOptions& options);
 
 // Throws ConfigError("<where>: <key>: session 'Z' is not in the dataset ...")

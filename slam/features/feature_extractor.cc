@@ -37,20 +37,32 @@ FeatureExtractor::FeatureExtractor(int max_features, double max_depth_m)
       << "features.max_features: must be >= 1, got " << max_features;
 }
 
-cv::Mat ToGray8(const cv::Mat& image) {
+namespace {
+
+void CheckImage8(const cv::Mat& image) {
   SLAM_THROW_IF_NOT(InputError, image.depth() == CV_8U)
       << "feature extraction: image must be 8-bit, got depth code " << image.depth()
       << " (convert 16-bit or float images to 8-bit first)";
+  SLAM_THROW_IF_NOT(InputError, image.channels() == 1 || image.channels() == 3 || image.channels() == 4)
+      << "feature extraction: image must have 1, 3 or 4 channels, got " << image.channels();
+}
+
+}  // namespace
+
+cv::Mat ToGray8(const cv::Mat& image) {
+  CheckImage8(image);
+  if (image.channels() == 1) return image;
   cv::Mat gray;
-  switch (image.channels()) {
-    case 1: gray = image; break;
-    case 3: cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY); break;
-    case 4: cv::cvtColor(image, gray, cv::COLOR_BGRA2GRAY); break;
-    default:
-      SLAM_THROW(InputError) << "feature extraction: image must have 1, 3 or 4 channels, got "
-                             << image.channels();
-  }
+  cv::cvtColor(image, gray, image.channels() == 3 ? cv::COLOR_BGR2GRAY : cv::COLOR_BGRA2GRAY);
   return gray;
+}
+
+cv::Mat ToBgr8(const cv::Mat& image) {
+  CheckImage8(image);
+  if (image.channels() == 3) return image;
+  cv::Mat bgr;
+  cv::cvtColor(image, bgr, image.channels() == 1 ? cv::COLOR_GRAY2BGR : cv::COLOR_BGRA2BGR);
+  return bgr;
 }
 
 namespace {
@@ -80,8 +92,8 @@ FrameFeatures FeatureExtractor::Extract(const cv::Mat& image, const cv::Mat& dep
   SLAM_THROW_IF_NOT(InputError, DetectsOnImages())
       << "features.type " << name()
       << ": its features are read per dataset frame (session and image name), not from an image";
-  const cv::Mat gray = ToGray8(image);
-  DetectAndDescribe(gray, &features.keypoints, &features.descriptors);
+  const cv::Mat input = DetectsOnColor() ? ToBgr8(image) : ToGray8(image);
+  DetectAndDescribe(input, &features.keypoints, &features.descriptors);
   Finish(depth_m, camera, &features);
   return features;
 }

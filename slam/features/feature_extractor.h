@@ -42,17 +42,22 @@ class FeatureExtractor {
   // they need ExtractFrame, and Extract on a bare image throws InputError.
   virtual bool DetectsOnImages() const { return true; }
 
+  // True for the types that detect on colour (an ONNX model with RGB input):
+  // DetectAndDescribe then gets the image as 8-bit BGR instead of gray.
+  virtual bool DetectsOnColor() const { return false; }
+
  protected:
   // Types that import features override this (and DetectsOnImages): the
   // frame's keypoints and one descriptor row each, in any order.
   virtual void ImportFrame(const RgbdFrame& frame, std::vector<cv::KeyPoint>* keypoints,
                            cv::Mat* descriptors) const;
 
-  // Detects and describes on an 8-bit single-channel, non-empty image. May
+  // Detects and describes on an 8-bit non-empty image, single-channel (or
+  // BGR when DetectsOnColor()). May
   // return more than max_features (Extract keeps the strongest) and in any
   // order; descriptors must have one row per keypoint (or be empty when there
   // are no keypoints).
-  virtual void DetectAndDescribe(const cv::Mat& gray, std::vector<cv::KeyPoint>* keypoints,
+  virtual void DetectAndDescribe(const cv::Mat& image, std::vector<cv::KeyPoint>* keypoints,
                                  cv::Mat* descriptors) const = 0;
 
  private:
@@ -65,6 +70,8 @@ class FeatureExtractor {
 
 // Converts 8-bit gray/BGR/BGRA to 8-bit gray; throws InputError otherwise.
 cv::Mat ToGray8(const cv::Mat& image);
+// Converts 8-bit gray/BGR/BGRA to 8-bit BGR; throws InputError otherwise.
+cv::Mat ToBgr8(const cv::Mat& image);
 
 // Sorts keypoints by |response| descending (stable: ties keep input order),
 // keeps at most `max_count` and reorders the descriptor rows to match.

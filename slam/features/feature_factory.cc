@@ -5,6 +5,7 @@
 #include "slam/features/feature_extractor.h"
 #include "slam/features/freak.h"
 #include "slam/features/h5_extractor.h"
+#include "slam/features/onnx_extractor.h"
 #include "slam/features/opencv_extractors.h"
 #include "slam/features/superpoint.h"
 #include "slam/features/surf.h"
@@ -25,9 +26,10 @@ std::unique_ptr<FeatureExtractor> CreateFeatureExtractor(const FeatureOptions& o
   if (o.type == "akaze") return CreateAkazeExtractor(o.akaze, n, d);
   if (o.type == "freak") return std::make_unique<FreakExtractor>(o.freak, o.gftt, o.fast, n, d);
   if (o.type == "h5") return std::make_unique<H5FeatureExtractor>(o.h5, n, d);
+  if (o.type == "onnx") return std::make_unique<OnnxFeatureExtractor>(o.onnx, n, d);
   SLAM_THROW_IF_NOT(ConfigError, o.type == "superpoint")
       << "features.type: unknown feature type '" << o.type << "'";
-  return std::make_unique<SuperPointExtractor>(o.superpoint, n, d);
+  return CreateSuperPointExtractor(o.superpoint, n, d);
 }
 
 }  // namespace duskmap

@@ -1,6 +1,8 @@
 #include "slam/features/feature_options.h"
 
 #include <algorithm>
+#include <cmath>
+#include <initializer_list>
 
 namespace duskmap {
 namespace {
@@ -93,6 +95,36 @@ void ReadSuperPoint(JsonFields f, SuperPointOptions* o) {
   f.RejectUnknown();
 }
 
+}  // namespace
+
+void ReadOnnxFeatureOptions(JsonFields f, OnnxFeatureOptions* o) {
+  f.Read("model_path", &o->model_path);
+  f.Read("contract", &o->contract);
+  f.Read("input_color", &o->input_color);
+  f.Read("input_scale", &o->input_scale);
+  f.Read("input_mean", &o->input_mean);
+  f.Read("input_std", &o->input_std);
+  f.Read("input_multiple_px", &o->input_multiple_px);
+  f.Read("scores_output", &o->scores_output);
+  f.Read("descriptors_output", &o->descriptors_output);
+  f.Read("keypoints_output", &o->keypoints_output);
+  f.Read("descriptor_dims", &o->descriptor_dims);
+  f.Read("score_layout", &o->score_layout);
+  f.Read("cell_size_px", &o->cell_size_px);
+  f.Read("dustbin", &o->dustbin);
+  f.Read("score_activation", &o->score_activation);
+  f.Read("descriptor_stride_px", &o->descriptor_stride_px);
+  f.Read("nms_radius_px", &o->nms_radius_px);
+  f.Read("threshold", &o->threshold);
+  f.Read("border_px", &o->border_px);
+  f.Read("normalize_descriptors", &o->normalize_descriptors);
+  f.Read("descriptors_layout", &o->descriptors_layout);
+  f.Read("keypoint_origin", &o->keypoint_origin);
+  f.RejectUnknown();
+}
+
+namespace {
+
 void ReadH5(JsonFields f, H5FeatureOptions* o) {
   f.Read("path", &o->path);
   f.Read("descriptor_kind", &o->descriptor_kind);
@@ -171,6 +203,52 @@ void SuperPointOptions::Check() const {
   FEATURE_OPTION_CHECK(border_px >= 0, "superpoint.border_px");
 }
 
+namespace {
+
+void CheckOneOf(const std::string& value, std::initializer_list<const char*> allowed,
+                const std::string& key) {
+  std::string known;
+  for (const char* a : allowed) {
+    if (value == a) return;
+    known += (known.empty() ? "" : ", ") + std::string(a);
+  }
+  SLAM_THROW(ConfigError) << "features.onnx." << key << ": '" << value << "' unknown (" << known
+                          << ")";
+}
+
+}  // namespace
+
+void OnnxFeatureOptions::Check() const {
+  CheckOneOf(contract, {"dense", "sparse"}, "contract");
+  CheckOneOf(input_color, {"gray", "rgb", "bgr"}, "input_color");
+  CheckOneOf(score_layout, {"cells", "map"}, "score_layout");
+  CheckOneOf(score_activation, {"none", "sigmoid"}, "score_activation");
+  CheckOneOf(descriptors_layout, {"n_by_d", "d_by_n"}, "descriptors_layout");
+  CheckOneOf(keypoint_origin, {"pixel_centre", "pixel_corner"}, "keypoint_origin");
+  FEATURE_OPTION_CHECK(std::isfinite(input_scale) && input_scale > 0.0, "onnx.input_scale");
+  const size_t channels = input_color == "gray" ? 1 : 3;
+  FEATURE_OPTION_CHECK(input_mean.size() == 1 || input_mean.size() == channels,
+                       "onnx.input_mean (one value, or one per input channel)");
+  FEATURE_OPTION_CHECK(input_std.size() == 1 || input_std.size() == channels,
+                       "onnx.input_std (one value, or one per input channel)");
+  for (const double m : input_mean) FEATURE_OPTION_CHECK(std::isfinite(m), "onnx.input_mean");
+  for (const double s : input_std) FEATURE_OPTION_CHECK(std::isfinite(s) && s > 0.0, "onnx.input_std");
+  FEATURE_OPTION_CHECK(input_multiple_px >= 1 && input_multiple_px <= 256, "onnx.input_multiple_px");
+  FEATURE_OPTION_CHECK(descriptor_dims >= 0 && descriptor_dims <= 8192, "onnx.descriptor_dims");
+  FEATURE_OPTION_CHECK(cell_size_px >= 1 && cell_size_px <= 64, "onnx.cell_size_px");
+  FEATURE_OPTION_CHECK(descriptor_stride_px >= 1 && descriptor_stride_px <= 64,
+                       "onnx.descriptor_stride_px");
+  FEATURE_OPTION_CHECK(nms_radius_px >= 0 && nms_radius_px <= 64, "onnx.nms_radius_px");
+  FEATURE_OPTION_CHECK(std::isfinite(threshold), "onnx.threshold");
+  FEATURE_OPTION_CHECK(border_px >= 0 && border_px <= 4096, "onnx.border_px");
+  if (contract == "dense") {  // the maps' sizes are the padded input's over their strides
+    FEATURE_OPTION_CHECK(score_layout != "cells" || input_multiple_px % cell_size_px == 0,
+                         "onnx.input_multiple_px (a multiple of cell_size_px)");
+    FEATURE_OPTION_CHECK(input_multiple_px % descriptor_stride_px == 0,
+                         "onnx.input_multiple_px (a multiple of descriptor_stride_px)");
+  }
+}
+
 void FeatureOptions::Check() const {
   const auto& names = FeatureTypeNames();
   if (std::find(names.begin(), names.end(), type) == names.end()) {
@@ -197,15 +275,18 @@ void FeatureOptions::Check() const {
   daisy.Check();
   freak.Check();
   superpoint.Check();
+  onnx.Check();
   h5.Check();
   SLAM_THROW_IF_NOT(ConfigError, type != "h5" || !h5.path.empty())
       << "features.h5.path: features of type h5 need the .h5 file (or folder of <session>.h5)";
+  SLAM_THROW_IF_NOT(ConfigError, type != "onnx" || !onnx.model_path.empty())
+      << "features.onnx.model_path: features of type onnx need the model's .onnx file";
 }
 
 const std::vector<std::string>& FeatureTypeNames() {
   static const std::vector<std::string> kNames = {"surf", "sift",  "brief", "brisk", "kaze",
                                                   "daisy", "orb", "akaze", "freak", "superpoint",
-                                                  "h5"};
+                                                  "onnx",  "h5"};
   return kNames;
 }
 
@@ -227,6 +308,7 @@ FeatureOptions ReadFeatureOptions(JsonFields& f) {
   ReadDaisy(f.Child("daisy"), &o.daisy);
   ReadFreak(f.Child("freak"), &o.freak);
   ReadSuperPoint(f.Child("superpoint"), &o.superpoint);
+  ReadOnnxFeatureOptions(f.Child("onnx"), &o.onnx);
   ReadH5(f.Child("h5"), &o.h5);
   f.RejectUnknown();
   o.Check();

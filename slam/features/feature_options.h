@@ -109,6 +109,52 @@ struct SuperPointOptions {
   void Check() const;
 };
 
+// A local-feature network in an ONNX file, run through OpenCV's DNN module
+// (onnx_extractor.h). The options declare the model's contract: its input and
+// one of two output shapes. The defaults are SuperPoint's (superpoint.h).
+//   dense:  a score map and a descriptor map. Scores come as "cells" (per
+//           cell of cell_size_px², that many logit channels plus an optional
+//           dustbin, softmax over the channels: SuperPoint, XFeat) or as one
+//           full-resolution "map" channel (ALIKED, DISK); keypoints are its
+//           max-pool NMS maxima above threshold, descriptors bilinear samples
+//           of the map at 1/descriptor_stride_px.
+//   sparse: keypoints (1xNx2 or Nx2, x then y), descriptors (1xNxD or NxD,
+//           or DxN with descriptors_layout "d_by_n") and optional scores (N).
+// OpenCV 4.6 imports no TopK, so a model that selects its keypoints with it
+// must be exported with its dense outputs instead.
+struct OnnxFeatureOptions {
+  std::string model_path;
+  std::string contract = "dense";  // "dense" or "sparse"
+  // Input blob 1xCxHxW: C = 1 ("gray") or 3 ("rgb", "bgr": channel order);
+  // value = (pixel * input_scale - input_mean[c]) / input_std[c], the image
+  // padded (border replicated) to multiples of input_multiple_px.
+  std::string input_color = "gray";
+  double input_scale = 1.0 / 255.0;
+  std::vector<double> input_mean = {0.0};  // one value, or one per channel
+  std::vector<double> input_std = {1.0};   // one value, or one per channel, > 0
+  int input_multiple_px = 8;
+  // Output names; empty: dense outputs found by their shape, sparse ones
+  // named "keypoints", "descriptors" and (when the model has it) "scores".
+  std::string scores_output;
+  std::string descriptors_output;
+  std::string keypoints_output;  // sparse only
+  int descriptor_dims = 0;       // 0: any; else the descriptors must have this many
+  // Dense decoding.
+  std::string score_layout = "cells";     // "cells" or "map"
+  int cell_size_px = 8;                   // cells: channels = cell_size_px² (+1 dustbin)
+  bool dustbin = true;                    // cells: the last channel means "no keypoint"
+  std::string score_activation = "none";  // map: "none" or "sigmoid"
+  int descriptor_stride_px = 8;           // the descriptor map's pixels per cell
+  int nms_radius_px = 4;                  // max-pool NMS radius (dense), pixels
+  // Both contracts.
+  double threshold = 0.010;      // keypoints need a score above this (sparse: with scores)
+  int border_px = 4;             // keypoints closer than this to the border are removed
+  bool normalize_descriptors = true;  // L2-normalise every descriptor
+  std::string descriptors_layout = "n_by_d";     // sparse: "n_by_d" or "d_by_n"
+  std::string keypoint_origin = "pixel_centre";  // sparse: "pixel_centre" or "pixel_corner"
+  void Check() const;
+};
+
 // Features imported from a file in hloc's HDF5 layout (h5_feature_file.h).
 struct H5FeatureOptions {
   // A .h5 file for the whole dataset, with one group per image named
@@ -139,16 +185,21 @@ struct FeatureOptions {
   DaisyOptions daisy;
   FreakOptions freak;
   SuperPointOptions superpoint;
+  OnnxFeatureOptions onnx;
   H5FeatureOptions h5;
   void Check() const;
 };
 
-// surf, sift, brief, brisk, kaze, daisy, orb, akaze, freak, superpoint, h5.
+// surf, sift, brief, brisk, kaze, daisy, orb, akaze, freak, superpoint, onnx, h5.
 const std::vector<std::string>& FeatureTypeNames();
 
 // Reads FeatureOptions from a JSON object such as
 //   {"type": "sift", "max_features": 1000, "sift": {"contrast_threshold": 0.02}}
 // Unknown keys are rejected with their path; the result is checked.
 FeatureOptions ReadFeatureOptions(JsonFields& fields);
+
+// Reads every key of `fields` (those already read excepted) into *options;
+// unknown keys are rejected with their path. Not checked: call Check().
+void ReadOnnxFeatureOptions(JsonFields fields, OnnxFeatureOptions* options);
 
 }  // namespace duskmap

@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "tests/features/onnx_test_models.h"
 #include "tests/features/two_plane_pair.h"
 #include "tests/testing/run_duskmap.h"
 
@@ -107,6 +108,12 @@ TEST_F(FeaturesCli, ExportedSiftImportedBackGivesTheSameMapAndRecords) {
   const auto b = RecordsWithoutTimings(dir_ + "/imported.jsonl");
   ASSERT_EQ(a.size(), 8u);
   EXPECT_EQ(a, b);
+  // Without --config, localize makes its features as the map's were: the
+  // map stores every feature option, the h5 file's path included.
+  const Result stored = RunDuskmap("localize --map " + dir_ + "/imported.db --dataset " + dir_ +
+                                   "/data --session A --records " + dir_ + "/imported_stored.jsonl");
+  ASSERT_EQ(stored.exit_code, 0) << stored.output;
+  EXPECT_EQ(RecordsWithoutTimings(dir_ + "/imported_stored.jsonl"), b);
 
   // An export is replaced only with --overwrite; other files never.
   const Result again = RunDuskmap("features export --dataset " + dir_ + "/data --type sift --sessions A --output " +
@@ -191,6 +198,72 @@ TEST_F(FeaturesCli, DeclaredH5ColumnInAnExperimentEqualsTheBuiltInColumn) {
   const Result type = RunDuskmap("run " + dir_ + "/other.json --output " + dir_ + "/other");
   EXPECT_NE(type.exit_code, 0);
   EXPECT_NE(type.output.find("'sift' cannot be declared"), std::string::npos) << type.output;
+}
+
+// The cells of one column of a run's report, each row after "<code>," with
+// the job paths' code replaced by "*".
+std::map<std::string, std::string> CellsByFeature(const std::string& cells_csv) {
+  std::map<std::string, std::string> cells;
+  for (const std::string& line : Lines(cells_csv)) {
+    const size_t comma = line.find(',');
+    std::string rest = line.substr(comma + 1);
+    for (const std::string& kind : {"localize/", "map/"}) {
+      const std::string job = kind + line.substr(0, comma) + "/";
+      for (size_t at = rest.find(job); at != std::string::npos; at = rest.find(job)) {
+        rest.replace(at, job.size(), kind + "*/");
+      }
+    }
+    cells[line.substr(0, comma)] += rest + "\n";
+  }
+  return cells;
+}
+
+// Columns declared as ONNX models ({"code", "type": "onnx", "model_path",
+// contract keys}) run through `duskmap run`: SuperPoint's model declared with
+// the onnx type's defaults (SuperPoint's contract) gives the SP column's
+// cells; a sparse model runs as its own column; a model that breaks its
+// declared contract is refused before any job runs.
+TEST_F(FeaturesCli, DeclaredOnnxColumnsRunThroughTheMatrix) {
+  const std::string superpoint = duskmap::testing::MakeSuperPointModel("superpoint_random.onnx");
+  const std::string sparse = duskmap::testing::MakeOnnxFeatureModel("onnx_sparse.onnx", "--contract sparse");
+  if (superpoint.empty() || sparse.empty()) GTEST_SKIP() << "python3-onnx unavailable: cannot write the test models";
+  std::ofstream(dir_ + "/sp_engine.json")
+      << nlohmann::json({{"features", {{"superpoint", {{"model_path", superpoint}}}}}}).dump();
+  const nlohmann::json experiment = {
+      {"dataset", {{"path", dir_ + "/data"}, {"format", "synthetic"}}},
+      {"features",
+       {"SP", {{"code", "XS"}, {"type", "onnx"}, {"model_path", superpoint}},
+        {{"code", "XP"}, {"type", "onnx"}, {"model_path", sparse}, {"contract", "sparse"},
+         {"threshold", 0.52}}}},
+      {"maps", {"1"}},
+      {"localization_sessions", {"A"}},
+      {"engine_config", dir_ + "/sp_engine.json"}};
+  std::ofstream(dir_ + "/onnx_experiment.json") << experiment.dump(2);
+  const Result run = RunDuskmap("run " + dir_ + "/onnx_experiment.json --output " + dir_ +
+                                "/onnx_results --jobs 2 --no-figures");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(fs::exists(dir_ + "/onnx_results/jobs/extract/onnx-XS/A/summary.json"));
+  EXPECT_TRUE(fs::exists(dir_ + "/onnx_results/jobs/extract/onnx-XP/A/summary.json"));
+  std::map<std::string, std::string> cells = CellsByFeature(dir_ + "/onnx_results/report/cells.csv");
+  ASSERT_TRUE(cells.count("SP") && cells.count("XS") && cells.count("XP")) << run.output;
+  EXPECT_EQ(cells["SP"], cells["XS"]);
+  EXPECT_NE(cells["XP"], cells["XS"]);
+
+  // Read as a dense model, the sparse one has no score map: refused up front, naming it.
+  nlohmann::json wrong = experiment;
+  wrong["features"][2].erase("contract");
+  std::ofstream(dir_ + "/onnx_wrong.json") << wrong.dump();
+  const Result refused = RunDuskmap("run " + dir_ + "/onnx_wrong.json --output " + dir_ + "/onnx_wrong");
+  EXPECT_NE(refused.exit_code, 0);
+  EXPECT_NE(refused.output.find("onnx_sparse.onnx: the outputs do not match the declared dense contract"),
+            std::string::npos) << refused.output;
+  EXPECT_FALSE(fs::exists(dir_ + "/onnx_wrong/jobs/extract"));
+  nlohmann::json no_model = experiment;
+  no_model["features"][2].erase("model_path");
+  std::ofstream(dir_ + "/onnx_no_model.json") << no_model.dump();
+  const Result missing = RunDuskmap("run " + dir_ + "/onnx_no_model.json --output " + dir_ + "/onnx_no_model");
+  EXPECT_NE(missing.exit_code, 0);
+  EXPECT_NE(missing.output.find("missing key 'model_path'"), std::string::npos) << missing.output;
 }
 
 // `features eval` on WxBS-style pairs (01.*, 02.*, corrs.txt): epipolar

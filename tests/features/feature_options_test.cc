@@ -20,7 +20,8 @@ TEST(FeatureOptionsTest, DefaultsAreThePapersSettings) {
   EXPECT_EQ(o.daisy.radius_px, 15.0);
   EXPECT_EQ(o.superpoint.threshold, 0.010);
   EXPECT_EQ(o.superpoint.nms_radius_px, 4);
-  EXPECT_EQ(FeatureTypeNames().size(), 11u);  // the ten detectors and h5 (imported)
+  // The ten detectors, onnx (any model) and h5 (imported).
+  EXPECT_EQ(FeatureTypeNames().size(), 12u);
   EXPECT_EQ(o.h5.descriptor_kind, "float");
   EXPECT_EQ(o.h5.keypoint_origin, "pixel_centre");
 }
@@ -44,6 +45,59 @@ TEST(FeatureOptionsTest, ReadsJsonAndRejectsUnknownKeys) {
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("contrast_treshold"), std::string::npos);
     EXPECT_NE(std::string(e.what()).find("test.json:features.sift"), std::string::npos);
+  }
+}
+
+TEST(FeatureOptionsTest, ReadsAnOnnxContract) {
+  const auto json = nlohmann::json::parse(
+      R"({"type": "onnx", "onnx": {"model_path": "m.onnx", "contract": "dense",
+          "input_color": "rgb", "input_mean": [0.485, 0.456, 0.406],
+          "input_std": [0.229, 0.224, 0.225], "input_multiple_px": 16,
+          "score_layout": "map", "score_activation": "sigmoid", "descriptor_stride_px": 1,
+          "scores_output": "scores", "descriptors_output": "dense_desc", "descriptor_dims": 128,
+          "nms_radius_px": 2, "threshold": 0.2, "border_px": 2,
+          "normalize_descriptors": false}})");
+  JsonFields fields(json, "test.json:features");
+  const FeatureOptions o = ReadFeatureOptions(fields);
+  EXPECT_EQ(o.type, "onnx");
+  EXPECT_EQ(o.onnx.model_path, "m.onnx");
+  EXPECT_EQ(o.onnx.input_color, "rgb");
+  EXPECT_EQ(o.onnx.input_mean, (std::vector<double>{0.485, 0.456, 0.406}));
+  EXPECT_EQ(o.onnx.input_std.size(), 3u);
+  EXPECT_EQ(o.onnx.input_multiple_px, 16);
+  EXPECT_EQ(o.onnx.score_layout, "map");
+  EXPECT_EQ(o.onnx.score_activation, "sigmoid");
+  EXPECT_EQ(o.onnx.descriptor_stride_px, 1);
+  EXPECT_EQ(o.onnx.scores_output, "scores");
+  EXPECT_EQ(o.onnx.descriptors_output, "dense_desc");
+  EXPECT_EQ(o.onnx.descriptor_dims, 128);
+  EXPECT_EQ(o.onnx.nms_radius_px, 2);
+  EXPECT_EQ(o.onnx.threshold, 0.2);
+  EXPECT_EQ(o.onnx.border_px, 2);
+  EXPECT_FALSE(o.onnx.normalize_descriptors);
+
+  // An onnx type needs its model; unknown keys and values are named.
+  const auto no_model = nlohmann::json::parse(R"({"type": "onnx"})");
+  JsonFields no_model_fields(no_model, "test.json:features");
+  EXPECT_THROW(ReadFeatureOptions(no_model_fields), ConfigError);
+  const auto typo = nlohmann::json::parse(R"({"onnx": {"model": "m.onnx"}})");
+  JsonFields typo_fields(typo, "test.json:features");
+  try {
+    ReadFeatureOptions(typo_fields);
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("test.json:features.onnx"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("model"), std::string::npos) << e.what();
+  }
+  const auto layout = nlohmann::json::parse(R"({"onnx": {"score_layout": "grid"}})");
+  JsonFields layout_fields(layout, "test.json:features");
+  try {
+    ReadFeatureOptions(layout_fields);
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("features.onnx.score_layout: 'grid' unknown (cells, map)"),
+              std::string::npos)
+        << e.what();
   }
 }
 

@@ -194,7 +194,7 @@ TEST(SuperGlueTest, MissingOrWrongModelIsAClearOneLineInputError) {
   EXPECT_NE(wrong_error.find("not a SuperGlue model (output scores must be 1x4x3"),
             std::string::npos)
       << wrong_error;
-  const std::string superpoint = MakeSuperPointModel("superpoint_random.onnx");
+  const std::string superpoint = MakeSuperPointModel("superglue_tests_superpoint_random.onnx");
   ASSERT_FALSE(superpoint.empty());
   const std::string superpoint_error = LoadError(superpoint);
   EXPECT_NE(superpoint_error.find("superpoint_random.onnx: not a SuperGlue model"), std::string::npos)
@@ -311,15 +311,15 @@ TEST(SuperGlueTest, RandomWeightModelOnRealImagesGivesAMutualThresholdedMatchSet
   const std::string dir = testing::LeuvenDir();
   const cv::Mat img1 = cv::imread(dir + "/img1.ppm"), img2 = cv::imread(dir + "/img2.ppm");
   if (img1.empty() || img2.empty()) GTEST_SKIP() << dir << " absent: real-image test skipped";
-  const std::string superpoint = MakeSuperPointModel("superpoint_random.onnx");
+  const std::string superpoint = MakeSuperPointModel("superglue_tests_superpoint_random.onnx");
   const std::string superglue = MakeSuperGlueModel("superglue_random.onnx");
   if (superpoint.empty() || superglue.empty()) {
     GTEST_SKIP() << "python3-onnx unavailable: cannot write the test models";
   }
   SuperPointOptions sp;
   sp.model_path = superpoint;
-  const SuperPointExtractor extractor(sp, 300);
-  const FrameFeatures f1 = extractor.Extract(img1), f2 = extractor.Extract(img2);
+  const std::unique_ptr<FeatureExtractor> extractor = CreateSuperPointExtractor(sp, 300);
+  const FrameFeatures f1 = extractor->Extract(img1), f2 = extractor->Extract(img2);
   ASSERT_GT(f1.size(), 50u);
   ASSERT_GT(f2.size(), 50u);
   SuperGlueOptions options;

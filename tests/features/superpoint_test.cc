@@ -1,103 +1,54 @@
 #include "slam/features/superpoint.h"
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
 #include <gtest/gtest.h>
 
+#include "slam/features/onnx_extractor.h"
+#include "tests/features/onnx_test_models.h"
 #include "tests/features/test_images.h"
 
 namespace duskmap {
 namespace {
 
-// Writes the architecture-identical random-weight model with the project's
-// script; empty when Python/onnx are unavailable.
-std::string MakeModel(const std::string& file, const std::string& flags = "") {
-  const std::string path = std::string(DUSKMAP_BINARY_DIR) + "/" + file;
-  if (std::filesystem::exists(path)) return path;
-  const std::string python =
-      std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  const std::string command = python + " " + DUSKMAP_SOURCE_DIR +
-                              "/scripts/make_test_superpoint_onnx.py " + path + " " + flags +
-                              " > /dev/null 2>&1";
-  if (std::system(command.c_str()) != 0 || !std::filesystem::exists(path)) return "";
-  return path;
-}
-
-TEST(SuperPointDecodingTest, DepthToSpaceOrderAndSoftmax) {
-  // One cell; the logit of channel k = 8 r + c is large: the heat map peaks at (r, c).
-  const int sizes[4] = {1, 65, 1, 2};
-  cv::Mat semi(4, sizes, CV_32F, cv::Scalar(0.0f));
-  semi.ptr<float>(0, 8 * 3 + 5)[0] = 10.0f;  // cell (0,0): row 3, col 5
-  semi.ptr<float>(0, 64)[1] = 10.0f;         // cell (0,1): dustbin wins
-  const cv::Mat heat = DecodeSuperPointHeatmap(semi);
-  ASSERT_EQ(heat.size(), cv::Size(16, 8));
-  cv::Point max_loc;
-  double max_value;
-  cv::minMaxLoc(heat.colRange(0, 8), nullptr, &max_value, nullptr, &max_loc);
-  EXPECT_EQ(max_loc, cv::Point(5, 3));
-  EXPECT_NEAR(max_value, std::exp(10.0) / (std::exp(10.0) + 64.0), 1e-5);
-  EXPECT_NEAR(cv::sum(heat.colRange(0, 8))[0], 1.0 - 1.0 / (std::exp(10.0) + 64.0), 1e-5);
-  EXPECT_LT(cv::sum(heat.colRange(8, 16))[0], 0.01);
-}
-
-TEST(SuperPointDecodingTest, NmsKeepsIsolatedMaxima) {
-  cv::Mat scores(40, 40, CV_32F, cv::Scalar(0.0f));
-  scores.at<float>(10, 10) = 0.9f;
-  scores.at<float>(10, 13) = 0.5f;  // within radius 4 of a stronger peak
-  scores.at<float>(30, 30) = 0.4f;  // isolated
-  const cv::Mat kept = SuperPointNms(scores, 4);
-  EXPECT_FLOAT_EQ(kept.at<float>(10, 10), 0.9f);
-  EXPECT_FLOAT_EQ(kept.at<float>(10, 13), 0.0f);
-  EXPECT_FLOAT_EQ(kept.at<float>(30, 30), 0.4f);
-  EXPECT_EQ(cv::countNonZero(kept), 2);
-}
-
-TEST(SuperPointDecodingTest, DescriptorsAreBilinearAndUnitNorm) {
-  const int sizes[4] = {1, 256, 2, 2};
-  cv::Mat desc(4, sizes, CV_32F, cv::Scalar(0.0f));
-  for (int c = 0; c < 256; ++c) {
-    desc.ptr<float>(0, c)[0] = c == 0 ? 1.0f : 0.0f;  // cell (0,0) points along e0
-    desc.ptr<float>(0, c)[1] = c == 1 ? 1.0f : 0.0f;  // cell (0,1) along e1
-  }
-  // Pixel 7.5 lies halfway between the centres (3.5 and 11.5) of cells 0 and 1.
-  const cv::Mat d = SampleSuperPointDescriptors(desc, {cv::KeyPoint(7.5f, 3.5f, 8)});
-  EXPECT_NEAR(d.at<float>(0, 0), std::sqrt(0.5), 1e-5);
-  EXPECT_NEAR(d.at<float>(0, 1), std::sqrt(0.5), 1e-5);
-  EXPECT_NEAR(cv::norm(d), 1.0, 1e-5);
-}
+using testing::MakeSuperPointModel;
 
 TEST(SuperPointTest, MissingOrWrongModelIsAClearInputError) {
   SuperPointOptions options;
-  EXPECT_THROW(SuperPointExtractor(options, 1000), InputError);
+  EXPECT_THROW(CreateSuperPointExtractor(options, 1000), InputError);
   options.model_path = std::string(DUSKMAP_BINARY_DIR) + "/not_a_model.onnx";
   std::ofstream(options.model_path) << "this is not an ONNX file";
   try {
-    SuperPointExtractor extractor(options, 1000);
+    CreateSuperPointExtractor(options, 1000);
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("not_a_model.onnx"), std::string::npos);
   }
-  const std::string wrong = MakeModel("superpoint_wrong_head.onnx", "--wrong-head");
+  const std::string wrong = MakeSuperPointModel("superpoint_wrong_head.onnx", "--wrong-head");
   if (wrong.empty()) GTEST_SKIP() << "python3-onnx unavailable: cannot write the test model";
   options.model_path = wrong;
   try {
-    SuperPointExtractor extractor(options, 1000);
+    CreateSuperPointExtractor(options, 1000);
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("not a SuperPoint model"), std::string::npos);
+    const std::string message = e.what();
+    EXPECT_NE(message.find("superpoint_wrong_head.onnx: not a SuperPoint model"), std::string::npos)
+        << message;
+    EXPECT_NE(message.find("1x65x(H/8)x(W/8)"), std::string::npos) << message;
+    EXPECT_NE(message.find("semi 1x64x"), std::string::npos) << message;  // what the model gives
   }
 }
 
 TEST(SuperPointTest, RandomWeightModelDecodesToValidFeatures) {
-  const std::string model = MakeModel("superpoint_random.onnx");
+  const std::string model = MakeSuperPointModel("superpoint_random.onnx");
   if (model.empty()) GTEST_SKIP() << "python3-onnx unavailable: cannot write the test model";
   SuperPointOptions options;
   options.model_path = model;
-  const SuperPointExtractor extractor(options, 300);
+  const std::unique_ptr<FeatureExtractor> extractor = CreateSuperPointExtractor(options, 300);
+  EXPECT_EQ(extractor->name(), "superpoint");
   const cv::Mat image = testing::TexturedImage(250, 190, 3);  // not a multiple of 8: padded
-  const FrameFeatures f = extractor.Extract(image);
+  const FrameFeatures f = extractor->Extract(image);
   ASSERT_GT(f.size(), 20u);
   EXPECT_LE(f.size(), 300u);
   EXPECT_EQ(f.descriptors.cols, 256);
@@ -115,10 +66,43 @@ TEST(SuperPointTest, RandomWeightModelDecodesToValidFeatures) {
       EXPECT_GT(std::max(std::abs(d.x), std::abs(d.y)), 4.0f);
     }
   }
-  const FrameFeatures again = extractor.Extract(image);
+  const FrameFeatures again = extractor->Extract(image);
   ASSERT_EQ(again.size(), f.size());
   EXPECT_EQ(cv::norm(again.descriptors, f.descriptors, cv::NORM_INF), 0.0);
-  EXPECT_TRUE(extractor.Extract(cv::Mat(6, 6, CV_8UC1, cv::Scalar(3))).empty());
+  EXPECT_TRUE(extractor->Extract(cv::Mat(6, 6, CV_8UC1, cv::Scalar(3))).empty());
+}
+
+// The superpoint type is the onnx type under SuperPoint's contract, and that
+// contract is the onnx type's default: the same model gives the same
+// features, bit for bit, through "superpoint", through SuperPointContract and
+// through "onnx" with only the model path set.
+TEST(SuperPointTest, IsTheOnnxTypeWithSuperPointsContract) {
+  const std::string model = MakeSuperPointModel("superpoint_random.onnx");
+  if (model.empty()) GTEST_SKIP() << "python3-onnx unavailable: cannot write the test model";
+  FeatureOptions superpoint;
+  superpoint.type = "superpoint";
+  superpoint.superpoint.model_path = model;
+  superpoint.superpoint.threshold = 0.02;
+  superpoint.max_features = 500;
+  FeatureOptions onnx = superpoint;
+  onnx.type = "onnx";
+  onnx.onnx = SuperPointContract(superpoint.superpoint);
+  FeatureOptions onnx_defaults = superpoint;
+  onnx_defaults.type = "onnx";
+  onnx_defaults.onnx.model_path = model;
+  onnx_defaults.onnx.threshold = 0.02;
+  const cv::Mat image = testing::TexturedImage(320, 240, 5);
+  const FrameFeatures expected = CreateFeatureExtractor(superpoint)->Extract(image);
+  ASSERT_GT(expected.size(), 50u);
+  for (const FeatureOptions& options : {onnx, onnx_defaults}) {
+    const FrameFeatures got = CreateFeatureExtractor(options)->Extract(image);
+    ASSERT_EQ(got.size(), expected.size());
+    for (size_t i = 0; i < got.size(); ++i) {
+      EXPECT_EQ(got.keypoints[i].pt, expected.keypoints[i].pt);
+      EXPECT_EQ(got.keypoints[i].response, expected.keypoints[i].response);
+    }
+    EXPECT_EQ(cv::norm(got.descriptors, expected.descriptors, cv::NORM_INF), 0.0);
+  }
 }
 
 }  // namespace
