@@ -1,0 +1,78 @@
+#!/usr/bin/python3
+"""Checks that the docs say what the tree is (run by scripts/test.sh).
+
+1. Every path into the repository that a doc names in backticks
+   (`slam/features/superpoint.h`, `features/h5_extractor.h` for a module's
+   file, `scripts/setup.sh`, `configs/paper_matrix.json`, ...) exists. Bare
+   file names are not checked: docs also name output files and other
+   projects' sources that way.
+2. A test count the README quotes ("N tests") is the number ctest lists,
+   when a build folder is given.
+3. docs/architecture.md names every module folder of slam/ and says where the
+   spec that comments cite as "spec §" lives.
+
+Usage: check_docs.py [BUILD_DIR]     exit 1 with one line per problem
+"""
+import os
+import re
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DOCS = ["README.md"] + sorted(os.path.join("docs", f) for f in os.listdir(os.path.join(ROOT, "docs"))
+                              if f.endswith(".md"))
+FILE_TOKEN = re.compile(r"`([A-Za-z0-9_./-]+\.(?:h|cc|py|sh|json|md|txt|csv))`")
+SKIPPED_DIRS = {".git", "build", "build-sanitize", "out", "data"}
+
+
+def repository_files():
+    paths = set()
+    for folder, dirs, files in os.walk(ROOT):
+        dirs[:] = [d for d in dirs if d not in SKIPPED_DIRS and not d.startswith(".")]
+        for f in files:
+            rel = os.path.relpath(os.path.join(folder, f), ROOT)
+            paths.add(rel)
+    return paths
+
+
+def main():
+    problems = []
+    paths = repository_files()
+    modules = sorted(d for d in os.listdir(os.path.join(ROOT, "slam"))
+                     if os.path.isdir(os.path.join(ROOT, "slam", d)))
+    top = ("slam/", "tests/", "bench/", "scripts/", "configs/", "experiments/", "docs/", "results/")
+    for doc in DOCS:
+        with open(os.path.join(ROOT, doc), encoding="utf-8") as text:
+            for number, line in enumerate(text, 1):
+                for token in FILE_TOKEN.findall(line):
+                    # Paths into the repository only: from its root, or from slam/ for a module's file.
+                    from_root = token.startswith(top)
+                    from_slam = token.split("/")[0] in modules and "/" in token
+                    if not (from_root or from_slam) or "*" in token or "{" in token:
+                        continue
+                    path = token if from_root else os.path.join("slam", token)
+                    if path not in paths and not os.path.exists(os.path.join(ROOT, path)):
+                        problems.append(f"{doc}:{number}: names `{token}`, which is not in the repository")
+    if len(sys.argv) > 1:
+        listed = subprocess.run(["ctest", "--test-dir", sys.argv[1], "-N"], capture_output=True, text=True)
+        total = re.search(r"Total Tests: (\d+)", listed.stdout)
+        if total:
+            with open(os.path.join(ROOT, "README.md"), encoding="utf-8") as text:
+                for number, line in enumerate(text, 1):
+                    for quoted in re.findall(r"\b(\d{3,}) tests\b", line):
+                        if quoted != total.group(1):
+                            problems.append(f"README.md:{number}: quotes {quoted} tests; ctest lists {total.group(1)}")
+    with open(os.path.join(ROOT, "docs", "architecture.md"), encoding="utf-8") as text:
+        architecture = text.read()
+    for module in sorted(os.listdir(os.path.join(ROOT, "slam"))):
+        if os.path.isdir(os.path.join(ROOT, "slam", module)) and f"`{module}/`" not in architecture:
+            problems.append(f"docs/architecture.md: the module slam/{module}/ is not described")
+    if "rtabmap_algorithms.md" not in architecture:
+        problems.append("docs/architecture.md: does not say where the spec cited as \"spec §\" lives")
+    for problem in problems:
+        print(problem)
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
