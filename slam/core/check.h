@@ -1,6 +1,6 @@
 // Two error channels (see docs/architecture.md):
 //  - bad configuration or bad input at an API boundary throws duskmap::Error
-//    (or a subclass) through SLAM_THROW_CHECK*; the CLI prints its one-line
+//    (or a subclass) through SLAM_THROW_IF_NOT / SLAM_THROW; the CLI prints its one-line
 //    message and exits non-zero;
 //  - a broken internal invariant aborts through SLAM_CHECK.
 #pragma once
