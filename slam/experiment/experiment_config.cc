@@ -101,13 +101,21 @@ const FeatureSetup& ExperimentOptions::FeatureSetupOfCache(const std::string& ca
 }
 
 const std::vector<FeatureSetup>& KnownFeatureSetups() {
+  auto known = [](const char* label, const char* extractor, const char* matcher, bool needs_model) {
+    FeatureSetup setup;
+    setup.label = label;
+    setup.extractor = extractor;
+    setup.matcher = matcher;
+    setup.needs_model = needs_model;
+    return setup;
+  };
   static const std::vector<FeatureSetup> setups = {
-      {"SU", "surf", "nndr", false},        {"SI", "sift", "nndr", false},
-      {"BF", "brief", "nndr", false},       {"BK", "brisk", "nndr", false},
-      {"KA", "kaze", "nndr", false},        {"DY", "daisy", "nndr", false},
-      {"SP", "superpoint", "nndr", true},   {"SG", "superpoint", "superglue", true},
-      {"OR", "orb", "nndr", false},         {"AK", "akaze", "nndr", false},
-      {"FR", "freak", "nndr", false},
+      known("SU", "surf", "nndr", false),       known("SI", "sift", "nndr", false),
+      known("BF", "brief", "nndr", false),      known("BK", "brisk", "nndr", false),
+      known("KA", "kaze", "nndr", false),       known("DY", "daisy", "nndr", false),
+      known("SP", "superpoint", "nndr", true),  known("SG", "superpoint", "superglue", true),
+      known("OR", "orb", "nndr", false),        known("AK", "akaze", "nndr", false),
+      known("FR", "freak", "nndr", false),
   };
   return setups;
 }

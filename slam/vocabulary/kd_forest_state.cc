@@ -171,7 +171,7 @@ std::string KdForest::CheckStructure() const {
         const int64_t offset = node.child[0];
         if (count < 1 || offset < 1 || offset + count > static_cast<int64_t>(pool_.size()) ||
             pool_[offset - 1] < static_cast<uint32_t>(count) ||
-            offset + pool_[offset - 1] > pool_.size()) {
+            static_cast<size_t>(offset) + pool_[offset - 1] > pool_.size()) {
           return "a leaf block is out of range";
         }
         points = &pool_[offset];

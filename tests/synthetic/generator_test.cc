@@ -76,7 +76,9 @@ TEST(GenerateDataset, WritesAReadableTumLayoutWithGroundTruth) {
     double max_depth = 0;
     cv::minMaxLoc(f->depth_m, nullptr, &max_depth);
     EXPECT_LE(max_depth, 4.0 + 0.1);
-    if (frames == 0) EXPECT_LT(f->odom_from_body.translation.norm(), 1e-9);
+    if (frames == 0) {
+      EXPECT_LT(f->odom_from_body.translation.norm(), 1e-9);
+    }
     ++frames;
   }
   EXPECT_EQ(frames, 4);

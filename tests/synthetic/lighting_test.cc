@@ -114,7 +114,9 @@ TEST_F(LightingTest, LivingRoomLampSwitchesOnAt1754) {
   for (double t : SortedDefaultTimes()) {
     const SessionLighting l = ComputeSessionLighting(options_, *scene_, t);
     for (size_t i = 0; i < scene_->lamps.size(); ++i) {
-      if (static_cast<int>(i) != lamp) EXPECT_TRUE(l.lamp_on[i]);
+      if (static_cast<int>(i) != lamp) {
+        EXPECT_TRUE(l.lamp_on[i]);
+      }
     }
   }
   // The lamp raises the irradiance next to it.

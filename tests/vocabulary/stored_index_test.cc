@@ -107,7 +107,9 @@ TEST(StoredIndex, StateThatDoesNotFitIsRebuiltWithTheReason) {
     Vocabulary v(options);
     v.Import(snapshot);
     EXPECT_FALSE(v.index_restore().restored);
-    if (options.index.seed == Options(c).index.seed) EXPECT_EQ(v.SaveIndexState(), expected);
+    if (options.index.seed == Options(c).index.seed) {
+      EXPECT_EQ(v.SaveIndexState(), expected);
+    }
     return v.index_restore().rebuild_reason;
   };
   VocabularySnapshot truncated = stored;
