@@ -20,8 +20,6 @@
 namespace duskmap {
 namespace {
 
-testing::TinyDatasetCleanup cleanup;
-
 // The paper's settings (configs/engine_paper.json).
 EngineOptions TestOptions() {
   return ReadEngineOptionsFile(std::string(DUSKMAP_SOURCE_DIR) + "/configs/engine_paper.json");
@@ -173,8 +171,7 @@ TEST_F(EngineSessions, GraphReductionShrinksRepeatedRouteAndStaysConnected) {
 
 TEST_F(EngineSessions, StoredMapLocalizesIdenticallyAndStaysUnchanged) {
   const Map& map = MapOf("1", {"1"}, false).map;
-  const std::string dir = testing::TinyDatasetPath() + "_maps";
-  std::filesystem::create_directories(dir);
+  const std::string dir = testing::ProcessTempDir("engine_maps");
   const std::string before = dir + "/before.db", after = dir + "/after.db";
   SaveMap(map, before);
   const LocalizationRun in_memory = Localize(map, "A");
@@ -242,8 +239,7 @@ void ExpectSameRecords(const LocalizationRun& a, const LocalizationRun& b, const
 TEST_F(EngineSessions, StoredIndexIsRestoredAndLocalizesAsABuiltOne) {
   const MappingRun& built = MapOf("1+6", {"1", "6"}, false);
   ASSERT_FALSE(built.map.words().index_state.empty());
-  const std::string dir = testing::TinyDatasetPath() + "_index";
-  std::filesystem::create_directories(dir);
+  const std::string dir = testing::ProcessTempDir("engine_index");
   const std::string path = dir + "/map.db";
   SaveMap(built.map, path);
   const std::string saved = FileBytes(path);
@@ -284,8 +280,7 @@ TEST_F(EngineSessions, StoredIndexIsRestoredAndLocalizesAsABuiltOne) {
 }
 
 TEST_F(EngineSessions, SessionsLocalizedOnOneLoadedMapDoNotDependOnTheOrder) {
-  const std::string dir = testing::TinyDatasetPath() + "_order";
-  std::filesystem::create_directories(dir);
+  const std::string dir = testing::ProcessTempDir("engine_order");
   const std::string path = dir + "/map.db";
   SaveMap(MapOf("1+6", {"1", "6"}, false).map, path);
   const EngineOptions options = TestOptions();

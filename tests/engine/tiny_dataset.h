@@ -1,24 +1,21 @@
 // A tiny synthetic dataset for the engine's tests (default 640x480 camera, the
-// first 25 frames of the patrol route), generated once per test process into /tmp.
+// first 25 frames of the patrol route), rendered once per build and shared by
+// the test processes (tests/testing/fixture_cache.h). Read-only: tests write
+// into testing::ProcessTempDir.
 #pragma once
 
-#include <unistd.h>
-
-#include <filesystem>
 #include <string>
 
 #include "slam/io/synthetic_dataset.h"
 #include "slam/synthetic/generator.h"
+#include "tests/testing/fixture_cache.h"
 
 namespace duskmap::testing {
 
 // Mapping sessions "1" (16:46), "2" (16:56) and "6" (19:35); localization
 // sessions "A" (16:51) and "F" (19:42).
 inline const std::string& TinyDatasetPath() {
-  static const std::string path = [] {
-    const std::string p = (std::filesystem::temp_directory_path() /
-                           ("duskmap_engine_tiny_" + std::to_string(::getpid())))
-                              .string();
+  static const std::string path = CachedFixture("engine_tiny_dataset", [](const std::string& p) {
     GeneratorConfig config;
     // 640x480: at 320x240 SURF registration accepted transforms 5-9 deg off
     // and re-localized only 63 % of same-light frames (measured).
@@ -33,20 +30,8 @@ inline const std::string& TinyDatasetPath() {
     options.output_path = p;
     options.overwrite = true;
     GenerateDataset(config, options);
-    return p;
-  }();
+  });
   return path;
 }
-
-// Removes the dataset at process exit.
-struct TinyDatasetCleanup {
-  ~TinyDatasetCleanup() {
-    std::error_code ignored;
-    std::filesystem::remove_all(
-        std::filesystem::temp_directory_path() /
-            ("duskmap_engine_tiny_" + std::to_string(::getpid())),
-        ignored);
-  }
-};
 
 }  // namespace duskmap::testing
