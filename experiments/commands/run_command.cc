@@ -8,6 +8,7 @@
 #include <iomanip>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -19,6 +20,7 @@
 #include "experiments/command_registry.h"
 #include "experiments/report_output.h"
 #include "slam/core/check.h"
+#include "slam/core/checksum.h"
 #include "slam/core/json_fields.h"
 #include "slam/datasets/dataset_factory.h"
 #include "slam/datasets/dataset_identity.h"
@@ -43,6 +45,7 @@ struct RunArgs {
   bool report = true;
   bool figures = true;
   bool allow_unordered = false;
+  std::string feature_cache;  // folder of feature caches shared across runs; empty = none
 };
 
 std::pair<int, int> ParseShard(const std::string& text) {
@@ -126,6 +129,16 @@ void WriteRunTiming(const JobRunSummary& summary, const fs::path& path) {
   WriteFileAtomically(path.string(), [&](std::ostream& out) { out << json.dump(1) << "\n"; });
 }
 
+// A checksum of the running executable: features a rebuilt program extracts
+// are never taken for this one's.
+std::string ProgramChecksum() {
+  std::ifstream in("/proc/self/exe", std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  SLAM_THROW_IF_NOT(InputError, in.good() || in.eof())
+      << "/proc/self/exe: cannot read the program to key the feature cache";
+  return Checksum64Hex(bytes.data(), bytes.size());
+}
+
 // The dataset's identity and how it was read (both shape the results).
 nlohmann::json DatasetIdentityRead(const ExperimentOptions& options,
                                    const std::vector<SessionInfo>& sessions, bool allow_unordered) {
@@ -148,6 +161,10 @@ RunFn SetupRun(CLI::App& command) {
                    "read rgb.txt/depth.txt as recorded: sort them and drop unmatched frames (real TUM recordings)");
   command.add_flag("!--no-report", args->report, "do not write the report after the run");
   command.add_flag("!--no-figures", args->figures, "write the report's tables only");
+  command.add_option("--feature-cache", args->feature_cache,
+                     "folder of extracted features kept across runs: an extract job whose "
+                     "dataset, program, feature options and frame selection match an entry "
+                     "restores it instead of extracting (docs/experiments.md)");
   return [args] {
     const ExperimentOptions options = ReadExperimentOptions(args->config);
     const EngineOptions engine = options.engine_config.empty()
@@ -163,10 +180,14 @@ RunFn SetupRun(CLI::App& command) {
 
     SLAM_THROW_IF_NOT(ConfigError, !(args->resume && args->overwrite))
         << "--resume and --overwrite: give one (continue the earlier run, or redo it)";
-    CheckOutputsApartFromInputs({{"--output", output.string()}},
+    CheckOutputsApartFromInputs({{"--output", output.string()}, {"--feature-cache", args->feature_cache}},
                                 {{"config", args->config},
                                  {"engine_config", options.engine_config},
                                  {"dataset.path", options.dataset_path}});
+    SLAM_THROW_IF_NOT(ConfigError, args->feature_cache.empty() ||
+                                       !IsSameOrInside(args->feature_cache, output))
+        << "--feature-cache " << args->feature_cache << ": must lie outside --output "
+        << output.string() << " (an --overwrite of the results would remove it)";
     DatasetReadOptions read;
     read.allow_unordered = args->allow_unordered;
     const auto dataset = OpenDataset(options.dataset_path, options.dataset_format, read);
@@ -233,7 +254,13 @@ RunFn SetupRun(CLI::App& command) {
         std::cout << line.str() << "\n" << std::flush;
       }
     };
-    EngineJobExecutor executor(options, engine, *dataset, output);
+    SharedFeatureCacheOptions shared_cache;
+    if (!args->feature_cache.empty()) {
+      shared_cache.folder = args->feature_cache;
+      shared_cache.program_id = ProgramChecksum();
+      shared_cache.dataset_identity = DatasetIdentityRead(options, sessions, args->allow_unordered);
+    }
+    EngineJobExecutor executor(options, engine, *dataset, output, shared_cache);
     JobRunnerOptions runner;
     runner.output_dir = output;
     runner.parallel_jobs = jobs;

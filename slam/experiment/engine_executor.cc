@@ -114,11 +114,12 @@ EngineOptions EngineOptionsForFeature(const EngineOptions& base, const FeatureSe
 
 EngineJobExecutor::EngineJobExecutor(const ExperimentOptions& experiment,
                                      const EngineOptions& engine, const DatasetReader& dataset,
-                                     fs::path output_dir)
+                                     fs::path output_dir, SharedFeatureCacheOptions shared_cache)
     : experiment_(experiment),
       engine_(engine),
       dataset_(dataset),
-      output_dir_(std::move(output_dir)) {}
+      output_dir_(std::move(output_dir)),
+      shared_cache_(std::move(shared_cache)) {}
 
 fs::path EngineJobExecutor::CacheFile(const std::string& extractor,
                                       const std::string& session) const {
@@ -162,6 +163,17 @@ void EngineJobExecutor::Extract(const Job& job, const fs::path& job_dir) {
   const FeatureSetup& setup = experiment_.FeatureSetupOfCache(job.extractor);
   setup.ApplyTo(&options.features);
   options.features.Check();
+  std::string shared_key;
+  if (shared_cache_.enabled()) {
+    shared_key = shared_cache_.KeyOf({job.session, job.extractor, options.features,
+                                      experiment_.frame_step, experiment_.max_frames_per_session});
+    if (std::optional<nlohmann::json> summary =
+            shared_cache_.Restore(shared_key, job_dir / kFeatureCacheFile)) {
+      (*summary)["shared_cache"] = "restored " + shared_key;  // timings are the extraction's
+      WriteSummary(job_dir, *summary);
+      return;
+    }
+  }
   const std::unique_ptr<FeatureExtractor> extractor = CreateFeatureExtractor(options.features);
   FeatureCacheWriter writer(job_dir / kFeatureCacheFile, job.extractor, reader->info());
   std::vector<double> times_ms;
@@ -184,12 +196,17 @@ void EngineJobExecutor::Extract(const Job& job, const fs::path& job_dir) {
   SLAM_THROW_IF_NOT(InputError, writer.num_frames() > 0)
       << "session " << job.session << ": no frame to extract features from";
   const StageTimingSummary t = SummarizeTimes(times_ms);
-  WriteSummary(job_dir, {{"extractor", job.extractor},
-                         {"session", job.session},
-                         {"frames", writer.num_frames()},
-                         {"mean_features", features_sum / writer.num_frames()},
-                         {"extraction_ms", {{"median", t.median_ms}, {"mean", t.mean_ms},
-                                            {"max", t.max_ms}}}});
+  nlohmann::json summary = {{"extractor", job.extractor},
+                            {"session", job.session},
+                            {"frames", writer.num_frames()},
+                            {"mean_features", features_sum / writer.num_frames()},
+                            {"extraction_ms", {{"median", t.median_ms}, {"mean", t.mean_ms},
+                                               {"max", t.max_ms}}}};
+  if (shared_cache_.enabled()) {
+    shared_cache_.Store(shared_key, job_dir / kFeatureCacheFile, summary);
+    summary["shared_cache"] = "stored " + shared_key;
+  }
+  WriteSummary(job_dir, summary);
 }
 
 void EngineJobExecutor::BuildMapJob(const Job& job, const fs::path& job_dir) {

@@ -1,6 +1,7 @@
 // Runs the experiment's jobs on the SLAM engine:
 //   extract   reads one dataset session (every frame_step-th frame, at most
-//             max_frames_per_session) and writes its feature cache;
+//             max_frames_per_session) and writes its feature cache, or
+//             restores it from a feature cache shared across runs;
 //   map       replays the cached sessions of a map into one map (graph
 //             reduction for "1-2-3-4-5-6" maps), saves map.db, its summary,
 //             the per-frame mapping records and the graph for the figures;
@@ -19,6 +20,7 @@
 #include "slam/experiment/experiment_config.h"
 #include "slam/experiment/job_runner.h"
 #include "slam/experiment/loaded_map_cache.h"
+#include "slam/experiment/shared_feature_cache.h"
 #include "slam/io/dataset_reader.h"
 
 namespace duskmap {
@@ -37,9 +39,11 @@ EngineOptions EngineOptionsForFeature(const EngineOptions& base, const FeatureSe
 
 class EngineJobExecutor : public JobExecutor {
  public:
-  // `dataset` must outlive the executor; `output_dir` is the runner's.
+  // `dataset` must outlive the executor; `output_dir` is the runner's;
+  // `shared_cache` (no folder: none) keeps extracted features across runs.
   EngineJobExecutor(const ExperimentOptions& experiment, const EngineOptions& engine,
-                    const DatasetReader& dataset, std::filesystem::path output_dir);
+                    const DatasetReader& dataset, std::filesystem::path output_dir,
+                    SharedFeatureCacheOptions shared_cache = {});
 
   void Execute(const Job& job, const std::filesystem::path& job_dir) override;
 
@@ -57,6 +61,7 @@ class EngineJobExecutor : public JobExecutor {
   std::filesystem::path output_dir_;
   std::mutex dataset_mutex_;  // serialises OpenSession
   LoadedMapCache maps_{2};    // maps of the localization jobs running now
+  SharedFeatureCache shared_cache_;
 };
 
 }  // namespace duskmap

@@ -1,6 +1,7 @@
 #include "slam/experiment/feature_cache.h"
 
 #include <cstring>
+#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -74,11 +75,19 @@ class FieldReader {
   const std::filesystem::path& path_;
 };
 
+// `path` removed first, so that a file hard-linked to it elsewhere (a shared
+// feature cache's entry, shared_feature_cache.h) is replaced, never truncated.
+const std::filesystem::path& FreshPath(const std::filesystem::path& path) {
+  std::error_code ignored;
+  std::filesystem::remove(path, ignored);
+  return path;
+}
+
 }  // namespace
 
 FeatureCacheWriter::FeatureCacheWriter(const std::filesystem::path& path,
                                        const std::string& extractor, const SessionInfo& session)
-    : path_(path), out_(path, std::ios::out | std::ios::binary | std::ios::trunc) {
+    : path_(path), out_(FreshPath(path), std::ios::out | std::ios::binary | std::ios::trunc) {
   SLAM_THROW_IF_NOT(InputError, out_.is_open()) << path.string() << ": cannot write";
   out_.write(kMagic, sizeof(kMagic));
   WriteString(out_, extractor);

@@ -24,7 +24,8 @@ namespace duskmap {
 
 class FeatureCacheWriter {
  public:
-  // Creates (truncates) `path`; throws InputError when it cannot be written.
+  // Creates `path` anew (an existing file is removed, not truncated: it may be
+  // hard-linked from a shared cache); throws InputError when it cannot be written.
   FeatureCacheWriter(const std::filesystem::path& path, const std::string& extractor,
                      const SessionInfo& session);
   // Appends one frame (its images are not stored).

@@ -163,6 +163,37 @@ TEST_F(RunCli, ResumeRedoesOnlyMissingJobsAndEarlierRunsAreKept) {
   EXPECT_EQ(ReadText(cells), before) << "deterministic: the redone jobs give the same results";
 }
 
+// Features kept across runs (--feature-cache): a second run into another
+// folder restores every extract job instead of extracting, with the first
+// run's extraction timings, and gives the first run's cells.
+TEST_F(RunCli, FeatureCacheSharedAcrossRunsGivesTheSameCells) {
+  const std::string cache = (dir_ / "shared_features").string();
+  const Result first = RunDuskmap(Run("cached1", "--feature-cache " + cache));
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  const Result second = RunDuskmap(Run("cached2", "--feature-cache " + cache));
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  auto summary = [&](const std::string& run, const std::string& job) {
+    return nlohmann::json::parse(std::ifstream(dir_ / run / "jobs" / job / "summary.json"));
+  };
+  for (const char* job : {"extract/orb/1", "extract/orb/2", "extract/orb/A", "extract/brief/1",
+                          "extract/brief/2", "extract/brief/A"}) {
+    const nlohmann::json stored = summary("cached1", job), restored = summary("cached2", job);
+    EXPECT_EQ(stored["shared_cache"].get<std::string>().rfind("stored ", 0), 0u) << job;
+    EXPECT_EQ(restored["shared_cache"].get<std::string>().rfind("restored ", 0), 0u) << job;
+    EXPECT_EQ(restored["extraction_ms"], stored["extraction_ms"]) << job;
+    EXPECT_EQ(ReadText(dir_ / "cached2" / "jobs" / job / "features.bin"),
+              ReadText(dir_ / "cached1" / "jobs" / job / "features.bin"))
+        << job;
+  }
+  EXPECT_EQ(ReadText(dir_ / "cached2" / "report" / "cells.csv"),
+            ReadText(dir_ / "cached1" / "report" / "cells.csv"));
+  // Inside the results folder, an --overwrite would remove it: refused before anything is written.
+  const Result inside = RunDuskmap(Run("cached3", "--feature-cache " + (dir_ / "cached3" / "features").string()));
+  EXPECT_EQ(inside.exit_code, 1) << inside.output;
+  EXPECT_NE(inside.output.find("must lie outside --output"), std::string::npos) << inside.output;
+  EXPECT_FALSE(fs::exists(dir_ / "cached3"));
+}
+
 TEST_F(RunCli, CorruptFeatureCacheFailsItsJobsNamingTheFile) {
   ASSERT_EQ(RunDuskmap(Run("corrupt")).exit_code, 0);
   const fs::path cache = dir_ / "corrupt" / "jobs" / "extract/orb/A" / "features.bin";

@@ -1,0 +1,148 @@
+#include "slam/experiment/shared_feature_cache.h"
+
+#include <unistd.h>
+
+#include <fstream>
+#include <system_error>
+
+#include "slam/core/check.h"
+#include "slam/core/checksum.h"
+#include "slam/engine/feature_options_json.h"
+#include "slam/experiment/feature_cache.h"
+
+namespace duskmap {
+namespace fs = std::filesystem;
+namespace {
+
+// Bumped when the entry layout or the key's meaning changes.
+constexpr const char* kEntryFormat = "duskmap-shared-feature-cache-1";
+
+// Size and modification time of the files a feature type reads besides the
+// images (an ONNX model, an h5 file or a folder of them): a replaced model
+// or file is another key.
+nlohmann::json ReadFilesOf(const FeatureOptions& features) {
+  std::vector<std::string> paths;
+  if (features.type == "onnx") paths.push_back(features.onnx.model_path);
+  if (features.type == "superpoint") paths.push_back(features.superpoint.model_path);
+  if (features.type == "h5") paths.push_back(features.h5.path);
+  nlohmann::json files = nlohmann::json::object();
+  auto describe = [&](const fs::path& path) {
+    std::error_code ec;
+    const auto size = fs::file_size(path, ec);
+    const auto time = fs::last_write_time(path, ec);
+    files[path.string()] = {{"bytes", ec ? -1 : static_cast<int64_t>(size)},
+                            {"mtime", ec ? 0 : static_cast<int64_t>(time.time_since_epoch().count())}};
+  };
+  for (const std::string& path : paths) {
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) {
+      for (const fs::directory_entry& entry : fs::directory_iterator(path, ec)) describe(entry.path());
+    } else {
+      describe(path);
+    }
+  }
+  return files;
+}
+
+// Reads the whole cache file; its frame count, or nullopt when it is damaged.
+std::optional<int64_t> FramesIn(const fs::path& file) {
+  try {
+    FeatureCacheReader reader(file);
+    int64_t frames = 0;
+    std::optional<FrameFeatures> features;
+    while (reader.Next(&features)) ++frames;
+    return frames;
+  } catch (const Error&) {
+    return std::nullopt;
+  }
+}
+
+// Hard-links `from` to `to` (a fresh name: `to` is removed first), copying
+// when a link cannot be made (another file system).
+void LinkOrCopy(const fs::path& from, const fs::path& to) {
+  std::error_code ec;
+  fs::remove(to, ec);
+  fs::create_hard_link(from, to, ec);
+  if (ec) fs::copy_file(from, to, fs::copy_options::overwrite_existing);
+}
+
+}  // namespace
+
+SharedFeatureCache::SharedFeatureCache(SharedFeatureCacheOptions options)
+    : options_(std::move(options)) {
+  if (!enabled()) return;
+  std::error_code ec;
+  fs::create_directories(options_.folder, ec);
+  SLAM_THROW_IF_NOT(InputError, !ec && fs::is_directory(options_.folder))
+      << options_.folder.string() << ": cannot use as a feature cache folder ("
+      << (ec ? ec.message() : "not a folder") << ")";
+}
+
+std::string SharedFeatureCache::KeyOf(const FeatureCacheInputs& inputs) const {
+  const nlohmann::json key = {
+      {"format", kEntryFormat},
+      {"program", options_.program_id},
+      {"dataset", options_.dataset_identity},
+      {"session", inputs.session},
+      {"extractor", inputs.cache_name},
+      {"features", FeatureOptionsToJson(inputs.features)},
+      {"files", ReadFilesOf(inputs.features)},
+      {"frame_step", inputs.frame_step},
+      {"max_frames_per_session", inputs.max_frames_per_session}};
+  const std::string text = key.dump();  // keys sorted: one text per content
+  return Checksum64Hex(text.data(), text.size());
+}
+
+std::optional<nlohmann::json> SharedFeatureCache::Restore(const std::string& key,
+                                                          const fs::path& cache_file) const {
+  if (!enabled()) return std::nullopt;
+  const fs::path entry = options_.folder / key;
+  std::error_code ec;
+  if (!fs::is_directory(entry, ec)) return std::nullopt;
+  nlohmann::json summary;
+  bool usable = false;
+  try {
+    std::ifstream in(entry / kSummaryFile);
+    summary = nlohmann::json::parse(in);
+    const std::optional<int64_t> frames = FramesIn(entry / kEntryFile);
+    usable = frames && summary.at("frames").get<int64_t>() == *frames;
+  } catch (const nlohmann::json::exception&) {
+    usable = false;
+  }
+  if (!usable) {  // damaged or half-copied by hand: extract again
+    fs::remove_all(entry, ec);
+    return std::nullopt;
+  }
+  LinkOrCopy(entry / kEntryFile, cache_file);
+  return summary;
+}
+
+void SharedFeatureCache::Store(const std::string& key, const fs::path& cache_file,
+                               const nlohmann::json& summary) const {
+  if (!enabled()) return;
+  const fs::path entry = options_.folder / key;
+  std::error_code ec;
+  if (fs::is_directory(entry, ec)) return;  // stored meanwhile by another run: the same inputs
+  const fs::path partial = options_.folder / (key + ".partial-" + std::to_string(::getpid()));
+  try {
+    fs::remove_all(partial, ec);
+    fs::create_directories(partial);
+    LinkOrCopy(cache_file, partial / kEntryFile);
+    std::ofstream out(partial / kSummaryFile);
+    out << summary.dump(1) << "\n";
+    out.close();
+    SLAM_THROW_IF_NOT(InputError, out.good())
+        << (partial / kSummaryFile).string() << ": cannot write the feature cache's summary";
+    fs::rename(partial, entry, ec);  // fails when another run stored it first: keep theirs
+    if (ec) fs::remove_all(partial, ec);
+  } catch (const fs::filesystem_error& e) {
+    fs::remove_all(partial, ec);
+    SLAM_THROW(InputError) << options_.folder.string() << ": cannot store a feature cache ("
+                           << e.code().message() << ")";
+  } catch (const Error&) {
+    fs::remove_all(partial, ec);
+    throw;
+  }
+}
+
+}  // namespace duskmap

@@ -1,0 +1,130 @@
+#include "slam/experiment/shared_feature_cache.h"
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include <gtest/gtest.h>
+
+#include "slam/experiment/feature_cache.h"
+#include "tests/testing/fixture_cache.h"
+
+namespace duskmap {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A cache file of `frames` frames with 5 SURF-like features each.
+void WriteCacheFile(const fs::path& path, int frames) {
+  SessionInfo session;
+  session.name = "1";
+  FeatureCacheWriter writer(path, "surf", session);
+  for (int i = 0; i < frames; ++i) {
+    RgbdFrame frame;
+    frame.frame_index = i;
+    frame.camera = PinholeCamera{640, 480, 525.0, 525.0, 319.5, 239.5};
+    FrameFeatures f;
+    f.descriptors = cv::Mat(5, 64, CV_32F, cv::Scalar(0.1f * i));
+    for (int k = 0; k < 5; ++k) {
+      f.keypoints.emplace_back(10.f + k, 20.f, 7.f);
+      f.points_in_camera.push_back(Eigen::Vector3f(0.1f * k, 0.2f, 1.5f));
+    }
+    writer.Append(frame, f);
+  }
+  writer.Close();
+}
+
+std::string Bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+SharedFeatureCacheOptions Options(const std::string& dir) {
+  SharedFeatureCacheOptions o;
+  o.folder = dir + "/cache";
+  o.program_id = "program-1";
+  o.dataset_identity = {{"format", "synthetic"}, {"checksum", "abc"}};
+  return o;
+}
+
+FeatureCacheInputs Inputs() {
+  FeatureCacheInputs inputs;
+  inputs.session = "1";
+  inputs.cache_name = "surf";
+  inputs.features.type = "surf";
+  return inputs;
+}
+
+TEST(SharedFeatureCacheTest, EveryInputThatShapesFeaturesChangesTheKey) {
+  const std::string dir = testing::ProcessTempDir("shared_cache_keys");
+  const SharedFeatureCache cache(Options(dir));
+  const std::string key = cache.KeyOf(Inputs());
+  EXPECT_EQ(key.size(), 16u);
+  EXPECT_EQ(cache.KeyOf(Inputs()), key);  // deterministic
+  std::vector<FeatureCacheInputs> changed(6, Inputs());
+  changed[0].session = "2";
+  changed[1].cache_name = "onnx-XS";
+  changed[2].features.surf.hessian_threshold = 200.0;
+  changed[3].features.max_features = 500;
+  changed[4].frame_step = 2;
+  changed[5].max_frames_per_session = 10;
+  for (const FeatureCacheInputs& inputs : changed) EXPECT_NE(cache.KeyOf(inputs), key);
+  SharedFeatureCacheOptions other_program = Options(dir);
+  other_program.program_id = "program-2";
+  EXPECT_NE(SharedFeatureCache(other_program).KeyOf(Inputs()), key);
+  SharedFeatureCacheOptions other_data = Options(dir);
+  other_data.dataset_identity["checksum"] = "abd";
+  EXPECT_NE(SharedFeatureCache(other_data).KeyOf(Inputs()), key);
+  // A feature type that reads a model: the model file's size is part of the key.
+  FeatureCacheInputs onnx = Inputs();
+  onnx.features.type = "onnx";
+  onnx.features.onnx.model_path = dir + "/model.onnx";
+  std::ofstream(onnx.features.onnx.model_path) << "one";
+  const std::string before = cache.KeyOf(onnx);
+  std::ofstream(onnx.features.onnx.model_path) << "another model";
+  EXPECT_NE(cache.KeyOf(onnx), before);
+  fs::remove_all(dir);
+}
+
+TEST(SharedFeatureCacheTest, StoredEntriesRestoreAndDamagedOnesAreMisses) {
+  const std::string dir = testing::ProcessTempDir("shared_cache_entries");
+  const SharedFeatureCache cache(Options(dir));
+  ASSERT_TRUE(cache.enabled());
+  const std::string key = cache.KeyOf(Inputs());
+  EXPECT_FALSE(cache.Restore(key, dir + "/restored.bin").has_value());  // empty cache
+
+  WriteCacheFile(dir + "/extracted.bin", 3);
+  const nlohmann::json summary = {{"frames", 3}, {"extraction_ms", {{"mean", 12.5}}}};
+  cache.Store(key, dir + "/extracted.bin", summary);
+  const std::optional<nlohmann::json> restored = cache.Restore(key, dir + "/restored.bin");
+  ASSERT_TRUE(restored.has_value());
+  EXPECT_EQ(*restored, summary);
+  EXPECT_EQ(Bytes(dir + "/restored.bin"), Bytes(dir + "/extracted.bin"));
+
+  // A job that extracts again writes a fresh file: the entry it was linked
+  // from stays whole.
+  WriteCacheFile(dir + "/restored.bin", 1);
+  ASSERT_TRUE(cache.Restore(key, dir + "/again.bin").has_value());
+  EXPECT_EQ(Bytes(dir + "/again.bin"), Bytes(dir + "/extracted.bin"));
+
+  // A summary whose frame count disagrees with the file, or a cut file: a
+  // miss, and the entry is gone.
+  const fs::path entry = fs::path(dir) / "cache" / key;
+  std::ofstream(entry / SharedFeatureCache::kSummaryFile) << nlohmann::json({{"frames", 4}}).dump();
+  EXPECT_FALSE(cache.Restore(key, dir + "/x.bin").has_value());
+  EXPECT_FALSE(fs::exists(entry));
+  cache.Store(key, dir + "/extracted.bin", summary);
+  fs::resize_file(entry / SharedFeatureCache::kEntryFile, fs::file_size(entry / SharedFeatureCache::kEntryFile) / 2);
+  EXPECT_FALSE(cache.Restore(key, dir + "/x.bin").has_value());
+  EXPECT_FALSE(fs::exists(entry));
+
+  // Without a folder the cache does nothing.
+  const SharedFeatureCache none{SharedFeatureCacheOptions{}};
+  EXPECT_FALSE(none.enabled());
+  none.Store(key, dir + "/extracted.bin", summary);
+  EXPECT_FALSE(none.Restore(key, dir + "/x.bin").has_value());
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace duskmap
