@@ -9,5 +9,7 @@ bash scripts/setup.sh
 bash scripts/build.sh
 ./build/experiments/duskmap generate --config configs/sunset_apartment.json --output data/sunset \
   --overwrite --preview
+# Extracted features are kept in out/feature_cache: a second main job with the same program and
+# dataset extracts nothing (docs/experiments.md, --feature-cache).
 ./build/experiments/duskmap run configs/paper_matrix.json --output out/paper_matrix --overwrite \
-  --jobs "${JOBS:-$(nproc 2>/dev/null || echo 2)}"
+  --feature-cache out/feature_cache --jobs "${JOBS:-$(nproc 2>/dev/null || echo 2)}"
