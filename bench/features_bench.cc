@@ -28,6 +28,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "slam/features/feature_extractor.h"
+#include "slam/features/feature_options_json.h"
 #include "slam/features/h5_feature_file.h"
 #include "slam/features/superglue.h"
 
@@ -65,7 +66,8 @@ void BM_Extract(benchmark::State& state, const std::string& type) {
   if (type == "superpoint") options.superpoint.model_path = std::getenv("DUSKMAP_SUPERPOINT_ONNX");
   if (type == "onnx") {
     const std::string path = std::getenv("DUSKMAP_ONNX_FEATURES");
-    ReadOnnxFeatureOptions(JsonFields(ReadJsonFile(path), path), &options.onnx);
+    JsonFields fields(ReadJsonFile(path), path);
+    JsonCodecReader::ReadFields(fields, &options.onnx);
   }
   const auto extractor = CreateFeatureExtractor(options);
   size_t keypoints = 0;

@@ -17,6 +17,7 @@
 #include "slam/datasets/dataset_factory.h"
 #include "slam/engine/feature_export.h"
 #include "slam/features/epipolar_eval.h"
+#include "slam/features/feature_options_json.h"
 #include "slam/features/sequence_eval.h"
 #include "slam/io/output_safety.h"
 
@@ -55,7 +56,7 @@ int RunEval(const EvalArgs& args) {
   FeatureOptions features;
   if (!args.config.empty()) {
     JsonFields fields(ReadJsonFile(args.config), args.config);
-    features = ReadFeatureOptions(fields);
+    features = ReadJsonOptions<FeatureOptions>(fields);
   }
   std::string table;
   nlohmann::json json;
@@ -123,7 +124,7 @@ int RunExport(const ExportArgs& args, bool type_given) {
   FeatureOptions features;
   if (!args.config.empty()) {
     JsonFields fields(ReadJsonFile(args.config), args.config);
-    features = ReadFeatureOptions(fields);
+    features = ReadJsonOptions<FeatureOptions>(fields);
   }
   SLAM_THROW_IF_NOT(ConfigError, args.output.empty() || type_given || !args.config.empty())
       << "features export: --output needs --type (or a --config naming one)";

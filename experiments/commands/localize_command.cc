@@ -14,9 +14,11 @@
 #include "slam/core/check.h"
 #include "slam/core/timer.h"
 #include "slam/datasets/dataset_factory.h"
-#include "slam/engine/feature_options_json.h"
+#include "slam/features/feature_options_json.h"
 #include "slam/engine/record_io.h"
 #include "slam/engine/session_runs.h"
+#include "slam/engine/session_runs_json.h"
+#include "slam/map/map_memory_json.h"
 #include "slam/io/output_safety.h"
 #include "slam/map/map_memory.h"
 #include "slam/map/map_store.h"
@@ -72,10 +74,8 @@ nlohmann::json SummaryToJson(const std::string& session, const LocalizationRun& 
                       {"index_restore_s", run.index_restore.seconds},
                       {"localizer_setup_s", run.setup_s},
                       {"peak_rss_bytes", PeakResidentBytes()},
-                      {"memory_bytes", MapMemoryToJson(run.memory)}};
-  for (const auto& [stage, t] : run.timings) {
-    j["timings"][stage] = {{"median_ms", t.median_ms}, {"mean_ms", t.mean_ms}, {"max_ms", t.max_ms}};
-  }
+                      {"memory_bytes", ToJsonObject(run.memory)}};
+  j["timings"] = ToJsonObject(run.timings);
   return j;
 }
 

@@ -11,6 +11,7 @@
 #include "slam/datasets/dataset_factory.h"
 #include "slam/engine/record_io.h"
 #include "slam/engine/session_runs.h"
+#include "slam/engine/session_runs_json.h"
 #include "slam/io/output_safety.h"
 #include "slam/map/map_memory.h"
 #include "slam/map/map_store.h"
@@ -31,14 +32,6 @@ struct MapArgs {
   bool overwrite = false;
   bool allow_unordered = false;
 };
-
-nlohmann::json TimingsToJson(const std::map<std::string, StageTimingSummary>& timings) {
-  nlohmann::json j;
-  for (const auto& [stage, t] : timings) {
-    j[stage] = {{"median_ms", t.median_ms}, {"mean_ms", t.mean_ms}, {"max_ms", t.max_ms}};
-  }
-  return j;
-}
 
 void WriteFrames(const std::string& path, const std::vector<MappingFrameResult>& frames) {
   std::vector<nlohmann::json> rows;
@@ -105,7 +98,7 @@ RunFn SetupMap(CLI::App& command) {
     summary["frames"] = run.frames.size();
     summary["wall_s"] = run.wall_s;
     summary["index_build_s"] = run.index_build_s;
-    summary["timings"] = TimingsToJson(run.timings);
+    summary["timings"] = ToJsonObject(run.timings);
     summary["peak_rss_bytes"] = PeakResidentBytes();
     summary["map_file"] = args->output;
     if (!args->frames.empty()) WriteFrames(args->frames, run.frames);

@@ -99,6 +99,7 @@ class JsonFields {
   JsonFields Child(const std::string& key);
   const nlohmann::json& Raw(const std::string& key);
   const std::string& where() const { return where_; }
+  const nlohmann::json& object() const { return object_; }
 
   // Throws ConfigError naming the first key that was never read; the key
   // "_comment" (free text for the reader of a config) is always allowed.

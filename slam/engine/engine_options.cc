@@ -3,9 +3,8 @@
 #include <cstring>
 #include <utility>
 
-#include <optional>
-
 #include "slam/core/check.h"
+#include "slam/engine/engine_options_json.h"
 
 namespace duskmap {
 
@@ -97,30 +96,38 @@ MapLoadOptions EngineOptions::LocalizationMapLoad() const {
 
 namespace {
 
-// A DescriptorStorage option ("float32" or "uint8") under `key`; `field`
-// names it in the error.
-void ReadStorage(JsonFields& fields, const char* key, const char* field, DescriptorStorage* out) {
-  std::string name = DescriptorStorageName(*out);
-  fields.Read(key, &name);
-  const std::optional<DescriptorStorage> storage = DescriptorStorageFromName(name);
-  SLAM_THROW_IF_NOT(ConfigError, storage.has_value())
-      << "EngineOptions." << field << ": must be \"float32\" or \"uint8\", got \"" << name << "\"";
-  *out = *storage;
+// Keys of engine configs before the options had one codec each; a config
+// that still uses one is told its new name.
+constexpr std::pair<const char*, const char*> kRenamedKeys[] = {
+    {"registration.float_nndr_ratio", "registration.matching.float_ratio"},
+    {"registration.binary_nndr_ratio", "registration.matching.binary_ratio"},
+    {"registration.max_reprojection_error_px", "registration.pnp.max_reprojection_error_px"},
+    {"loop_closure.bad_signature_ratio", "loop_closure.vocabulary.bad_signature_ratio"},
+    {"loop_closure.word_storage", "loop_closure.vocabulary.index.float_storage"}};
+
+void RejectRenamedKeys(const JsonFields& fields) {
+  for (const auto& [old_key, new_key] : kRenamedKeys) {
+    SLAM_THROW_IF_NOT(ConfigError,
+                      json_codec_internal::FindPath(fields.object(), old_key) == nullptr)
+        << fields.where() << "." << old_key << ": renamed " << new_key;
+  }
 }
 
 // An option's Check() names the C++ struct that holds it
-// ("RegistrationOptions.guess_window_px: ..."); a config's reader wants the
-// JSON section it wrote ("registration.guess_window_px: ...").
+// ("PnpRansacOptions.max_trials: ..."); a config's reader wants the JSON
+// path it wrote ("registration.pnp.max_trials: ...").
 std::string JsonKeysOfOptionError(std::string message) {
   static const std::pair<const char*, const char*> kSections[] = {
       {"RegistrationOptions.", "registration."},
-      {"PnpRansacOptions.", "registration."},
-      {"NndrMatcherOptions.", "registration."},
+      {"PnpRansacOptions.", "registration.pnp."},
+      {"NndrMatcherOptions.", "registration.matching."},
       {"GuidedMatchingOptions.", "registration."},
+      {"LocalBundleAdjustmentOptions.", "registration.bundle_adjustment."},
+      {"LinkInformationOptions.", "registration.information."},
       {"LoopClosureOptions.", "loop_closure."},
-      {"BayesFilterOptions.", "loop_closure."},
-      {"VocabularyOptions.", "loop_closure."},
-      {"DescriptorIndexOptions.", "loop_closure."},
+      {"BayesFilterOptions.", "loop_closure.bayes."},
+      {"VocabularyOptions.", "loop_closure.vocabulary."},
+      {"DescriptorIndexOptions.", "loop_closure.vocabulary.index."},
       {"ProximityOptions.", "proximity."},
       {"PoseGraphOptimizerOptions.", "optimizer."},
       {"OdometryCacheOptions.", "localization."},
@@ -134,58 +141,9 @@ std::string JsonKeysOfOptionError(std::string message) {
 }  // namespace
 
 EngineOptions ReadEngineOptions(JsonFields& fields) {
+  RejectRenamedKeys(fields);
   EngineOptions o;
-  JsonFields features = fields.Child("features");
-  o.features = ReadFeatureOptions(features);
-  JsonFields registration = fields.Child("registration");
-  registration.Read("min_inliers", &o.registration.min_inliers);
-  registration.Read("second_pass", &o.registration.second_pass);
-  registration.Read("guess_window_px", &o.registration.guess_window_px);
-  registration.Read("float_nndr_ratio", &o.registration.matching.float_ratio);
-  registration.Read("binary_nndr_ratio", &o.registration.matching.binary_ratio);
-  registration.Read("max_reprojection_error_px", &o.registration.pnp.max_reprojection_error_px);
-  registration.RejectUnknown();
-  JsonFields matcher = fields.Child("matcher");
-  o.matcher = ReadMatcherOptions(matcher);
-  JsonFields lcd = fields.Child("loop_closure");
-  lcd.Read("loop_threshold", &o.loop_closure.loop_threshold);
-  lcd.Read("aggressive_loop_threshold", &o.loop_closure.aggressive_loop_threshold);
-  lcd.Read("bad_signature_ratio", &o.loop_closure.vocabulary.bad_signature_ratio);
-  ReadStorage(lcd, "word_storage", "loop_closure.word_storage",
-              &o.loop_closure.vocabulary.index.float_storage);
-  lcd.RejectUnknown();
-  JsonFields proximity = fields.Child("proximity");
-  proximity.Read("local_radius_m", &o.proximity.local_radius_m);
-  proximity.Read("max_angle_deg", &o.proximity.max_angle_deg);
-  proximity.RejectUnknown();
-  JsonFields optimizer = fields.Child("optimizer");
-  optimizer.Read("max_iterations", &o.optimizer.max_iterations);
-  optimizer.Read("max_error_ratio", &o.optimizer.max_error_ratio);
-  optimizer.RejectUnknown();
-  JsonFields odometry = fields.Child("odometry");
-  odometry.Read("linear_sigma_m", &o.odometry.linear_sigma_m);
-  odometry.Read("angular_sigma_rad", &o.odometry.angular_sigma_rad);
-  odometry.RejectUnknown();
-  JsonFields mapping = fields.Child("mapping");
-  mapping.Read("proximity", &o.mapping.proximity);
-  mapping.Read("proximity_max_paths", &o.mapping.proximity_max_paths);
-  mapping.Read("reduce_graph", &o.mapping.reduce_graph);
-  mapping.Read("short_term_memory", &o.mapping.short_term_memory);
-  ReadStorage(mapping, "descriptor_storage", "mapping.descriptor_storage",
-              &o.mapping.descriptor_storage);
-  mapping.RejectUnknown();
-  JsonFields localization = fields.Child("localization");
-  localization.Read("proximity", &o.localization.proximity);
-  localization.Read("proximity_max_paths", &o.localization.proximity_max_paths);
-  localization.Read("odometry_cache_size", &o.localization.odometry_cache_size);
-  localization.Read("odometry_cache_max_error_ratio",
-                    &o.localization.odometry_cache_max_error_ratio);
-  localization.RejectUnknown();
-  fields.Read("random_seed", &o.random_seed);
-  std::string binary_distance = BinaryDistanceName(o.binary_distance);
-  fields.Read("binary_distance", &binary_distance);
-  o.binary_distance = ParseBinaryDistance(binary_distance, "EngineOptions.binary_distance");
-  fields.RejectUnknown();
+  JsonCodecReader::ReadFields(fields, &o);
   try {
     o.Check();
   } catch (const ConfigError& e) {
@@ -199,43 +157,6 @@ EngineOptions ReadEngineOptionsFile(const std::string& path) {
   return ReadEngineOptions(fields);
 }
 
-nlohmann::json EngineOptionsToJson(const EngineOptions& o) {
-  return {
-      {"registration",
-       {{"min_inliers", o.registration.min_inliers},
-        {"second_pass", o.registration.second_pass},
-        {"guess_window_px", o.registration.guess_window_px},
-        {"float_nndr_ratio", o.registration.matching.float_ratio},
-        {"binary_nndr_ratio", o.registration.matching.binary_ratio},
-        {"max_reprojection_error_px", o.registration.pnp.max_reprojection_error_px}}},
-      {"matcher", MatcherOptionsToJson(o.matcher)},
-      {"loop_closure",
-       {{"loop_threshold", o.loop_closure.loop_threshold},
-        {"aggressive_loop_threshold", o.loop_closure.aggressive_loop_threshold},
-        {"bad_signature_ratio", o.loop_closure.vocabulary.bad_signature_ratio},
-        {"word_storage", DescriptorStorageName(o.loop_closure.vocabulary.index.float_storage)}}},
-      {"proximity",
-       {{"local_radius_m", o.proximity.local_radius_m},
-        {"max_angle_deg", o.proximity.max_angle_deg}}},
-      {"optimizer",
-       {{"max_iterations", o.optimizer.max_iterations},
-        {"max_error_ratio", o.optimizer.max_error_ratio}}},
-      {"odometry",
-       {{"linear_sigma_m", o.odometry.linear_sigma_m},
-        {"angular_sigma_rad", o.odometry.angular_sigma_rad}}},
-      {"mapping",
-       {{"proximity", o.mapping.proximity},
-        {"proximity_max_paths", o.mapping.proximity_max_paths},
-        {"reduce_graph", o.mapping.reduce_graph},
-        {"short_term_memory", o.mapping.short_term_memory},
-        {"descriptor_storage", DescriptorStorageName(o.mapping.descriptor_storage)}}},
-      {"localization",
-       {{"proximity", o.localization.proximity},
-        {"proximity_max_paths", o.localization.proximity_max_paths},
-        {"odometry_cache_size", o.localization.odometry_cache_size},
-        {"odometry_cache_max_error_ratio", o.localization.odometry_cache_max_error_ratio}}},
-      {"random_seed", o.random_seed},
-      {"binary_distance", BinaryDistanceName(o.binary_distance)}};
-}
+nlohmann::json EngineOptionsToJson(const EngineOptions& options) { return ToJsonObject(options); }
 
 }  // namespace duskmap

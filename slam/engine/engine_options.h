@@ -91,16 +91,22 @@ struct EngineOptions {
 };
 
 // Reads EngineOptions from JSON such as
-//   {"features": {...}, "registration": {"min_inliers": 20},
-//    "loop_closure": {"loop_threshold": 0.11}, "proximity": {"local_radius_m": 1},
-//    "optimizer": {"max_error_ratio": 0}, "mapping": {"reduce_graph": true},
-//    "localization": {"odometry_cache_size": 0}, "random_seed": 0,
-//    "binary_distance": "byte_l1"}
-// Unknown keys are rejected with their path; the result is checked.
+//   {"features": {...}, "registration": {"min_inliers": 20, "pnp": {"max_trials": 500}},
+//    "loop_closure": {"loop_threshold": 0.11, "vocabulary": {"bad_signature_ratio": 0.2}},
+//    "proximity": {"local_radius_m": 1}, "optimizer": {"max_error_ratio": 0},
+//    "mapping": {"reduce_graph": true}, "localization": {"odometry_cache_size": 0},
+//    "random_seed": 0, "binary_distance": "byte_l1"}
+// Every sub-struct's keys are its own codec's (engine_options_json.h); the
+// fields the engine fills in itself (seeds, binary distance, features per
+// node, short-term memory, proximity paths) are refused where they would be
+// ignored, naming the key that sets them, and the keys of older configs are
+// refused with their new names. Unknown keys are rejected with their path;
+// the result is checked.
 EngineOptions ReadEngineOptions(JsonFields& fields);
 EngineOptions ReadEngineOptionsFile(const std::string& path);
 
-// The engine-level values as JSON (stored in the map's metadata).
+// Every engine option as JSON, as ReadEngineOptions reads it (stored in the
+// map's metadata).
 nlohmann::json EngineOptionsToJson(const EngineOptions& options);
 
 }  // namespace duskmap

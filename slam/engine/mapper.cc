@@ -5,7 +5,7 @@
 
 #include "slam/core/check.h"
 #include "slam/core/timer.h"
-#include "slam/engine/feature_options_json.h"
+#include "slam/features/feature_options_json.h"
 #include "slam/engine/graph_reduction.h"
 #include "slam/engine/map_optimization.h"
 #include "slam/map/map_vocabulary.h"
@@ -38,7 +38,7 @@ Mapper::Mapper(const EngineOptions& options)
   lcd_ = std::make_unique<LoopClosureDetector>(options_.LoopClosure());
   MapMetadata metadata;
   metadata.feature_type = options_.features.type;
-  metadata.feature_parameters_json = FeatureOptionsToJson(options_.features).dump();
+  metadata.feature_parameters_json = ToJsonObject(options_.features).dump();
   metadata.engine_parameters_json = EngineOptionsToJson(options_).dump();
   metadata.descriptor_kind = extractor_->kind();
   metadata.descriptor_storage = options_.mapping.descriptor_storage;

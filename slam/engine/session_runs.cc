@@ -7,6 +7,7 @@
 #include "slam/core/check.h"
 #include "slam/core/timer.h"
 #include "slam/engine/vocabulary_index.h"
+#include "slam/map/map_memory_json.h"
 
 namespace duskmap {
 
@@ -21,6 +22,22 @@ StageTimingSummary SummarizeTimes(std::vector<double> times_ms) {
   return s;
 }
 
+namespace {
+
+// Each stage's per-frame times, as SessionStageTimings summarizes them.
+struct StageTimeLists {
+  std::vector<double> features, loop_closure_detection, proximity_detection,
+      transformation_estimation, optimisation, lcd_plus_te, total;
+  SessionStageTimings Summarize() const {
+    return {SummarizeTimes(features),     SummarizeTimes(loop_closure_detection),
+            SummarizeTimes(proximity_detection), SummarizeTimes(transformation_estimation),
+            SummarizeTimes(optimisation), SummarizeTimes(lcd_plus_te),
+            SummarizeTimes(total)};
+  }
+};
+
+}  // namespace
+
 MapSummary SummarizeMap(const Map& map) {
   MapSummary s;
   s.num_sessions = static_cast<int>(map.sessions().size());
@@ -33,23 +50,13 @@ MapSummary SummarizeMap(const Map& map) {
   return s;
 }
 
-nlohmann::json MapMemoryToJson(const MapMemory& m) {
-  return {{"descriptors", m.descriptors_bytes},
-          {"keypoints_points", m.keypoints_points_bytes},
-          {"words_index", m.words_index_bytes},
-          {"graph", m.graph_bytes},
-          {"filter", m.filter_bytes},
-          {"total", m.total_bytes()},
-          {"per_node", m.bytes_per_node()}};
-}
-
 nlohmann::json MapSummaryToJson(const MapSummary& s) {
   return {{"sessions", s.num_sessions},
           {"nodes_per_session", s.nodes_per_session},
           {"links_by_type", s.links_by_type},
           {"connected_session_groups", s.connected_groups},
           {"vocabulary_words", s.vocabulary_words},
-          {"memory_bytes", MapMemoryToJson(s.memory)}};
+          {"memory_bytes", ToJsonObject(s.memory)}};
 }
 
 ReaderFrameSource::ReaderFrameSource(std::unique_ptr<SessionReader> reader)
@@ -77,7 +84,7 @@ MappingRun BuildMap(const std::vector<FrameSource*>& sessions, const EngineOptio
   SLAM_THROW_IF_NOT(InputError, !sessions.empty()) << "BuildMap: no session to map";
   Stopwatch wall;
   MappingRun run;
-  std::map<std::string, std::vector<double>> times;
+  StageTimeLists times;
   {  // the mapper is gone before the map's vocabulary index is built
     Mapper mapper(options);
     std::optional<FrameFeatures> features;
@@ -86,12 +93,12 @@ MappingRun BuildMap(const std::vector<FrameSource*>& sessions, const EngineOptio
       while (std::optional<RgbdFrame> frame = source->Next(&features)) {
         MappingFrameResult result = features ? mapper.ProcessFrame(*frame, std::move(*features))
                                              : mapper.ProcessFrame(*frame);
-        times["features"].push_back(result.timings.features_ms);
-        times["lcd"].push_back(result.timings.lcd_ms);
-        times["proximity"].push_back(result.timings.proximity_ms);
-        times["te"].push_back(result.timings.registration_ms);
-        times["optimization"].push_back(result.timings.optimization_ms);
-        times["total"].push_back(result.timings.total_ms);
+        times.features.push_back(result.timings.features_ms);
+        times.loop_closure_detection.push_back(result.timings.lcd_ms);
+        times.proximity_detection.push_back(result.timings.proximity_ms);
+        times.transformation_estimation.push_back(result.timings.registration_ms);
+        times.optimisation.push_back(result.timings.optimization_ms);
+        times.total.push_back(result.timings.total_ms);
         run.frames.push_back(result);
       }
     }
@@ -102,7 +109,7 @@ MappingRun BuildMap(const std::vector<FrameSource*>& sessions, const EngineOptio
     // The mapper's live vocabulary, besides the words the map stores.
     run.memory.words_index_bytes += lcd.vocabulary().MemoryBytes();
   }
-  for (auto& [stage, values] : times) run.timings[stage] = SummarizeTimes(values);
+  run.timings = times.Summarize();
   run.index_build_s = StoreVocabularyIndex(options, &run.map);
   run.wall_s = wall.ElapsedMs() / 1000.0;
   return run;
@@ -157,19 +164,19 @@ LocalizationRun LocalizeSession(const Map& map, MapWords words, FrameSource& ses
   run.index_restore = localizer.loop_closure().vocabulary().index_restore();
   std::vector<std::optional<Rigid3d>> truth;
   std::vector<Eigen::Vector3d> positions;
-  std::map<std::string, std::vector<double>> times;
+  StageTimeLists times;
   std::optional<FrameFeatures> features;
   while (std::optional<RgbdFrame> frame = session.Next(&features)) {
     LocalizationRecord record = features ? localizer.ProcessFrame(*frame, *features)
                                          : localizer.ProcessFrame(*frame);
     truth.push_back(frame->world_from_camera);
     positions.push_back(frame->odom_from_camera().translation);
-    times["features"].push_back(record.timings.features_ms);
-    times["lcd"].push_back(record.timings.lcd_ms);
-    times["proximity"].push_back(record.timings.proximity_ms);
-    times["te"].push_back(record.timings.registration_ms);
-    times["lcd_te"].push_back(record.timings.lcd_ms + record.timings.registration_ms);
-    times["total"].push_back(record.timings.total_ms);
+    times.features.push_back(record.timings.features_ms);
+    times.loop_closure_detection.push_back(record.timings.lcd_ms);
+    times.proximity_detection.push_back(record.timings.proximity_ms);
+    times.transformation_estimation.push_back(record.timings.registration_ms);
+    times.lcd_plus_te.push_back(record.timings.lcd_ms + record.timings.registration_ms);
+    times.total.push_back(record.timings.total_ms);
     run.records.push_back(std::move(record));
   }
   run.summary = EvaluateLocalization(map, truth, positions, metrics, &run.records);
@@ -179,7 +186,7 @@ LocalizationRun LocalizeSession(const Map& map, MapWords words, FrameSource& ses
   // The imported vocabulary (words, index, inverted index), besides what the
   // map holds (its stored words only when it was loaded with them).
   run.memory.words_index_bytes += lcd.vocabulary().MemoryBytes();
-  for (auto& [stage, values] : times) run.timings[stage] = SummarizeTimes(values);
+  run.timings = times.Summarize();
   run.wall_s = wall.ElapsedMs() / 1000.0;
   return run;
 }

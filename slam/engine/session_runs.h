@@ -29,6 +29,17 @@ struct StageTimingSummary {
 // Median, mean and max of a list of per-frame times (zeros when empty).
 StageTimingSummary SummarizeTimes(std::vector<double> times_ms);
 
+// A session's per-frame times, stage by stage (the paper's timing rows).
+struct SessionStageTimings {
+  StageTimingSummary features;
+  StageTimingSummary loop_closure_detection;
+  StageTimingSummary proximity_detection;
+  StageTimingSummary transformation_estimation;
+  StageTimingSummary optimisation;  // mapping only
+  StageTimingSummary lcd_plus_te;   // localization only: LCD + TE of each frame
+  StageTimingSummary total;
+};
+
 struct MapSummary {
   int num_sessions = 0;
   std::vector<int> nodes_per_session;                        // by session id
@@ -40,7 +51,6 @@ struct MapSummary {
 
 MapSummary SummarizeMap(const Map& map);
 nlohmann::json MapSummaryToJson(const MapSummary& summary);
-nlohmann::json MapMemoryToJson(const MapMemory& memory);
 
 // One session's frames as the engine drivers consume them. A source either
 // hands out frames with their images (the engine extracts the features) or
@@ -72,7 +82,7 @@ struct MappingRun {
   // localizer's (both hold the map's words and places).
   MapMemory memory;
   std::vector<MappingFrameResult> frames;
-  std::map<std::string, StageTimingSummary> timings;  // "features", "lcd", ...
+  SessionStageTimings timings;
   // Building the vocabulary index stored with the map (vocabulary_index.h),
   // part of wall_s.
   double index_build_s = 0.0;
@@ -92,7 +102,7 @@ struct LocalizationRun {
   // filter = the Bayes filter's transition columns + one posterior per place.
   MapMemory memory;
   LocalizationSummary summary;
-  std::map<std::string, StageTimingSummary> timings;  // "features", "lcd", "te", "lcd_te", ...
+  SessionStageTimings timings;
   // How the localizer's vocabulary index was obtained: restored from the
   // map's stored index, or built (with the reason), and how long it took.
   IndexRestore index_restore;

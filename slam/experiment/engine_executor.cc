@@ -13,24 +13,21 @@
 #include "slam/experiment/feature_cache.h"
 #include "slam/experiment/job_results.h"
 #include "slam/features/feature_extractor.h"
+#include "slam/map/map_memory_json.h"
 #include "slam/map/map_store.h"
 
 namespace duskmap {
 namespace fs = std::filesystem;
 namespace {
 
-StageTimesMs MeanTimes(const std::map<std::string, StageTimingSummary>& timings) {
-  const auto mean = [&](const char* stage) {
-    const auto it = timings.find(stage);
-    return it == timings.end() ? 0.0 : it->second.mean_ms;
-  };
+StageTimesMs MeanTimes(const SessionStageTimings& timings) {
   StageTimesMs times;
-  times.features = mean("features");
-  times.loop_closure_detection = mean("lcd");
-  times.proximity_detection = mean("proximity");
-  times.transformation_estimation = mean("te");
-  times.optimisation = mean("optimization");
-  times.total = mean("total");
+  times.features = timings.features.mean_ms;
+  times.loop_closure_detection = timings.loop_closure_detection.mean_ms;
+  times.proximity_detection = timings.proximity_detection.mean_ms;
+  times.transformation_estimation = timings.transformation_estimation.mean_ms;
+  times.optimisation = timings.optimisation.mean_ms;
+  times.total = timings.total.mean_ms;
   return times;
 }
 
@@ -41,12 +38,9 @@ void WriteJsonRows(const fs::path& path, const std::vector<nlohmann::json>& rows
   SLAM_THROW_IF_NOT(InputError, out.good()) << path.string() << ": write failed";
 }
 
+// The summaries' memory_bytes: MapMemory's components by their JSON keys.
 std::map<std::string, size_t> MemoryComponents(const MapMemory& memory) {
-  return {{"descriptors", memory.descriptors_bytes},
-          {"keypoints_points", memory.keypoints_points_bytes},
-          {"words_index", memory.words_index_bytes},
-          {"graph", memory.graph_bytes},
-          {"filter", memory.filter_bytes}};
+  return ToJsonObject(memory).get<std::map<std::string, size_t>>();
 }
 
 // ATE of the nodes of the session group holding the map's first session (the
@@ -298,9 +292,7 @@ void EngineJobExecutor::Localize(const Job& job, const fs::path& job_dir) {
   summary.mean_inliers_pct = r.num_relocalized > 0 ? inliers_pct_sum / r.num_relocalized : 0.0;
   summary.mean_features = run.records.empty() ? 0.0 : features_sum / run.records.size();
   summary.mean_times_ms = MeanTimes(run.timings);
-  if (const auto it = run.timings.find("lcd_te"); it != run.timings.end()) {
-    summary.median_lcd_te_ms = it->second.median_ms;
-  }
+  summary.median_lcd_te_ms = run.timings.lcd_plus_te.median_ms;
   summary.memory_bytes = MemoryComponents(run.memory);
   summary.map_load_s = shared.load_s;
   summary.map_from_cache = shared.from_cache;

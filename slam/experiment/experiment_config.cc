@@ -6,6 +6,7 @@
 #include "slam/core/check.h"
 #include "slam/core/json_fields.h"
 #include "slam/experiment/job_plan.h"
+#include "slam/features/feature_options_json.h"
 #include "slam/features/feature_extractor.h"
 #include "slam/io/output_safety.h"
 
@@ -55,15 +56,13 @@ void ReadFeatures(JsonFields& root, const std::filesystem::path& base, Experimen
         << "' cannot be declared (h5 imports a file, onnx runs a model; built-in types are "
            "listed by code: SU, SI, ...)";
     if (type == "h5") {
-      column.ReadRequired("path", &setup.h5.path);
-      column.Read("descriptor_kind", &setup.h5.descriptor_kind);
-      column.Read("keypoint_origin", &setup.h5.keypoint_origin);
-      column.RejectUnknown();
+      SLAM_THROW_IF_NOT(ConfigError, column.Has("path")) << at << ": missing key 'path'";
+      JsonCodecReader::ReadFields(column, &setup.h5);
       setup.h5.path = ResolveRelative(setup.h5.path, base);
     } else {
       SLAM_THROW_IF_NOT(ConfigError, column.Has("model_path"))
           << at << ": missing key 'model_path'";
-      ReadOnnxFeatureOptions(column, &setup.onnx);
+      JsonCodecReader::ReadFields(column, &setup.onnx);
       setup.onnx.model_path = ResolveRelative(setup.onnx.model_path, base);
     }
     setup.extractor = type;

@@ -7,7 +7,7 @@
 
 #include "slam/core/check.h"
 #include "slam/core/checksum.h"
-#include "slam/engine/feature_options_json.h"
+#include "slam/features/feature_options_json.h"
 #include "slam/experiment/feature_cache.h"
 
 namespace duskmap {
@@ -85,7 +85,7 @@ std::string SharedFeatureCache::KeyOf(const FeatureCacheInputs& inputs) const {
       {"dataset", options_.dataset_identity},
       {"session", inputs.session},
       {"extractor", inputs.cache_name},
-      {"features", FeatureOptionsToJson(inputs.features)},
+      {"features", ToJsonObject(inputs.features)},
       {"files", ReadFilesOf(inputs.features)},
       {"frame_step", inputs.frame_step},
       {"max_frames_per_session", inputs.max_frames_per_session}};

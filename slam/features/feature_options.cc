@@ -5,134 +5,9 @@
 #include <initializer_list>
 
 namespace duskmap {
-namespace {
 
 #define FEATURE_OPTION_CHECK(cond, name) \
   SLAM_THROW_IF_NOT(ConfigError, cond) << "features." << name << ": must satisfy " #cond
-
-void ReadSurf(JsonFields f, SurfOptions* o) {
-  f.Read("hessian_threshold", &o->hessian_threshold);
-  f.Read("octaves", &o->octaves);
-  f.Read("octave_layers", &o->octave_layers);
-  f.Read("extended", &o->extended);
-  f.Read("upright", &o->upright);
-  f.RejectUnknown();
-}
-void ReadSift(JsonFields f, SiftOptions* o) {
-  f.Read("octave_layers", &o->octave_layers);
-  f.Read("contrast_threshold", &o->contrast_threshold);
-  f.Read("edge_threshold", &o->edge_threshold);
-  f.Read("sigma", &o->sigma);
-  f.Read("root_sift", &o->root_sift);
-  f.RejectUnknown();
-}
-void ReadOrb(JsonFields f, OrbOptions* o) {
-  f.Read("scale_factor", &o->scale_factor);
-  f.Read("levels", &o->levels);
-  f.Read("edge_threshold", &o->edge_threshold);
-  f.Read("patch_size", &o->patch_size);
-  f.Read("fast_threshold", &o->fast_threshold);
-  f.RejectUnknown();
-}
-void ReadBrisk(JsonFields f, BriskOptions* o) {
-  f.Read("threshold", &o->threshold);
-  f.Read("octaves", &o->octaves);
-  f.Read("pattern_scale", &o->pattern_scale);
-  f.RejectUnknown();
-}
-void ReadKaze(JsonFields f, KazeOptions* o) {
-  f.Read("extended", &o->extended);
-  f.Read("upright", &o->upright);
-  f.Read("threshold", &o->threshold);
-  f.Read("octaves", &o->octaves);
-  f.Read("octave_layers", &o->octave_layers);
-  f.RejectUnknown();
-}
-void ReadAkaze(JsonFields f, AkazeOptions* o) {
-  f.Read("threshold", &o->threshold);
-  f.Read("octaves", &o->octaves);
-  f.Read("octave_layers", &o->octave_layers);
-  f.RejectUnknown();
-}
-void ReadGftt(JsonFields f, GfttOptions* o) {
-  f.Read("quality_level", &o->quality_level);
-  f.Read("min_distance_px", &o->min_distance_px);
-  f.Read("block_size", &o->block_size);
-  f.RejectUnknown();
-}
-void ReadFast(JsonFields f, FastOptions* o) {
-  f.Read("threshold", &o->threshold);
-  f.RejectUnknown();
-}
-void ReadBrief(JsonFields f, BriefOptions* o) {
-  f.Read("bytes", &o->bytes);
-  f.Read("patch_size_px", &o->patch_size_px);
-  f.Read("smooth_sigma_px", &o->smooth_sigma_px);
-  f.Read("pattern_seed", &o->pattern_seed);
-  f.RejectUnknown();
-}
-void ReadDaisy(JsonFields f, DaisyOptions* o) {
-  f.Read("radius_px", &o->radius_px);
-  f.Read("rings", &o->rings);
-  f.Read("ring_points", &o->ring_points);
-  f.Read("orientations", &o->orientations);
-  f.Read("normalize", &o->normalize);
-  f.Read("use_orientation", &o->use_orientation);
-  f.RejectUnknown();
-}
-void ReadFreak(JsonFields f, FreakOptions* o) {
-  f.Read("detector", &o->detector);
-  f.Read("orientation_normalized", &o->orientation_normalized);
-  f.Read("scale_normalized", &o->scale_normalized);
-  f.Read("pattern_scale", &o->pattern_scale);
-  f.RejectUnknown();
-}
-void ReadSuperPoint(JsonFields f, SuperPointOptions* o) {
-  f.Read("model_path", &o->model_path);
-  f.Read("threshold", &o->threshold);
-  f.Read("nms_radius_px", &o->nms_radius_px);
-  f.Read("border_px", &o->border_px);
-  f.RejectUnknown();
-}
-
-}  // namespace
-
-void ReadOnnxFeatureOptions(JsonFields f, OnnxFeatureOptions* o) {
-  f.Read("model_path", &o->model_path);
-  f.Read("contract", &o->contract);
-  f.Read("input_color", &o->input_color);
-  f.Read("input_scale", &o->input_scale);
-  f.Read("input_mean", &o->input_mean);
-  f.Read("input_std", &o->input_std);
-  f.Read("input_multiple_px", &o->input_multiple_px);
-  f.Read("scores_output", &o->scores_output);
-  f.Read("descriptors_output", &o->descriptors_output);
-  f.Read("keypoints_output", &o->keypoints_output);
-  f.Read("descriptor_dims", &o->descriptor_dims);
-  f.Read("score_layout", &o->score_layout);
-  f.Read("cell_size_px", &o->cell_size_px);
-  f.Read("dustbin", &o->dustbin);
-  f.Read("score_activation", &o->score_activation);
-  f.Read("descriptor_stride_px", &o->descriptor_stride_px);
-  f.Read("nms_radius_px", &o->nms_radius_px);
-  f.Read("threshold", &o->threshold);
-  f.Read("border_px", &o->border_px);
-  f.Read("normalize_descriptors", &o->normalize_descriptors);
-  f.Read("descriptors_layout", &o->descriptors_layout);
-  f.Read("keypoint_origin", &o->keypoint_origin);
-  f.RejectUnknown();
-}
-
-namespace {
-
-void ReadH5(JsonFields f, H5FeatureOptions* o) {
-  f.Read("path", &o->path);
-  f.Read("descriptor_kind", &o->descriptor_kind);
-  f.Read("keypoint_origin", &o->keypoint_origin);
-  f.RejectUnknown();
-}
-
-}  // namespace
 
 void H5FeatureOptions::Check() const {
   SLAM_THROW_IF_NOT(ConfigError, descriptor_kind == "float" || descriptor_kind == "binary")
@@ -288,31 +163,6 @@ const std::vector<std::string>& FeatureTypeNames() {
                                                   "daisy", "orb", "akaze", "freak", "superpoint",
                                                   "onnx",  "h5"};
   return kNames;
-}
-
-FeatureOptions ReadFeatureOptions(JsonFields& f) {
-  FeatureOptions o;
-  f.Read("type", &o.type);
-  f.Read("max_features", &o.max_features);
-  f.Read("vocabulary_features", &o.vocabulary_features);
-  f.Read("max_depth_m", &o.max_depth_m);
-  ReadSurf(f.Child("surf"), &o.surf);
-  ReadSift(f.Child("sift"), &o.sift);
-  ReadOrb(f.Child("orb"), &o.orb);
-  ReadBrisk(f.Child("brisk"), &o.brisk);
-  ReadKaze(f.Child("kaze"), &o.kaze);
-  ReadAkaze(f.Child("akaze"), &o.akaze);
-  ReadGftt(f.Child("gftt"), &o.gftt);
-  ReadFast(f.Child("fast"), &o.fast);
-  ReadBrief(f.Child("brief"), &o.brief);
-  ReadDaisy(f.Child("daisy"), &o.daisy);
-  ReadFreak(f.Child("freak"), &o.freak);
-  ReadSuperPoint(f.Child("superpoint"), &o.superpoint);
-  ReadOnnxFeatureOptions(f.Child("onnx"), &o.onnx);
-  ReadH5(f.Child("h5"), &o.h5);
-  f.RejectUnknown();
-  o.Check();
-  return o;
 }
 
 }  // namespace duskmap

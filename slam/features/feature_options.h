@@ -193,13 +193,6 @@ struct FeatureOptions {
 // surf, sift, brief, brisk, kaze, daisy, orb, akaze, freak, superpoint, onnx, h5.
 const std::vector<std::string>& FeatureTypeNames();
 
-// Reads FeatureOptions from a JSON object such as
-//   {"type": "sift", "max_features": 1000, "sift": {"contrast_threshold": 0.02}}
-// Unknown keys are rejected with their path; the result is checked.
-FeatureOptions ReadFeatureOptions(JsonFields& fields);
-
-// Reads every key of `fields` (those already read excepted) into *options;
-// unknown keys are rejected with their path. Not checked: call Check().
-void ReadOnnxFeatureOptions(JsonFields fields, OnnxFeatureOptions* options);
+// JSON: slam/features/feature_options_json.h.
 
 }  // namespace duskmap

@@ -10,25 +10,6 @@ void MatcherOptions::Check() const {
   if (type == "superglue") superglue.Check();
 }
 
-MatcherOptions ReadMatcherOptions(JsonFields& fields) {
-  MatcherOptions o;
-  fields.Read("type", &o.type);
-  JsonFields superglue = fields.Child("superglue");
-  superglue.Read("model_path", &o.superglue.model_path);
-  superglue.Read("match_threshold", &o.superglue.match_threshold);
-  superglue.RejectUnknown();
-  fields.RejectUnknown();
-  o.Check();
-  return o;
-}
-
-nlohmann::json MatcherOptionsToJson(const MatcherOptions& o) {
-  return {{"type", o.type},
-          {"superglue",
-           {{"model_path", o.superglue.model_path},
-            {"match_threshold", o.superglue.match_threshold}}}};
-}
-
 std::unique_ptr<FeatureMatcher> CreateFeatureMatcher(const MatcherOptions& options) {
   options.Check();
   if (options.type == "nndr") return nullptr;

@@ -25,9 +25,6 @@ struct MatcherOptions {
   bool ReadsKeypointResponses() const { return type == "superglue"; }
 };
 
-// Reads MatcherOptions; unknown keys are rejected with their path; checked.
-MatcherOptions ReadMatcherOptions(JsonFields& fields);
-nlohmann::json MatcherOptionsToJson(const MatcherOptions& options);
 
 // The matcher to hand to EstimateTransform: nullptr for "nndr" (registration
 // then builds its own NNDR matcher), a loaded SuperGlueMatcher for

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "slam/features/feature_options_json.h"
+
 namespace duskmap {
 namespace {
 
@@ -31,7 +33,7 @@ TEST(FeatureOptionsTest, ReadsJsonAndRejectsUnknownKeys) {
       R"({"type": "sift", "max_features": 800, "sift": {"contrast_threshold": 0.03},
           "surf": {"extended": true}})");
   JsonFields fields(json, "test.json:features");
-  const FeatureOptions o = ReadFeatureOptions(fields);
+  const FeatureOptions o = ReadJsonOptions<FeatureOptions>(fields);
   EXPECT_EQ(o.type, "sift");
   EXPECT_EQ(o.max_features, 800);
   EXPECT_EQ(o.sift.contrast_threshold, 0.03);
@@ -40,7 +42,7 @@ TEST(FeatureOptionsTest, ReadsJsonAndRejectsUnknownKeys) {
   const auto typo = nlohmann::json::parse(R"({"sift": {"contrast_treshold": 0.03}})");
   JsonFields typo_fields(typo, "test.json:features");
   try {
-    ReadFeatureOptions(typo_fields);
+    ReadJsonOptions<FeatureOptions>(typo_fields);
     FAIL() << "expected ConfigError";
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("contrast_treshold"), std::string::npos);
@@ -58,7 +60,7 @@ TEST(FeatureOptionsTest, ReadsAnOnnxContract) {
           "nms_radius_px": 2, "threshold": 0.2, "border_px": 2,
           "normalize_descriptors": false}})");
   JsonFields fields(json, "test.json:features");
-  const FeatureOptions o = ReadFeatureOptions(fields);
+  const FeatureOptions o = ReadJsonOptions<FeatureOptions>(fields);
   EXPECT_EQ(o.type, "onnx");
   EXPECT_EQ(o.onnx.model_path, "m.onnx");
   EXPECT_EQ(o.onnx.input_color, "rgb");
@@ -79,11 +81,11 @@ TEST(FeatureOptionsTest, ReadsAnOnnxContract) {
   // An onnx type needs its model; unknown keys and values are named.
   const auto no_model = nlohmann::json::parse(R"({"type": "onnx"})");
   JsonFields no_model_fields(no_model, "test.json:features");
-  EXPECT_THROW(ReadFeatureOptions(no_model_fields), ConfigError);
+  EXPECT_THROW(ReadJsonOptions<FeatureOptions>(no_model_fields), ConfigError);
   const auto typo = nlohmann::json::parse(R"({"onnx": {"model": "m.onnx"}})");
   JsonFields typo_fields(typo, "test.json:features");
   try {
-    ReadFeatureOptions(typo_fields);
+    ReadJsonOptions<FeatureOptions>(typo_fields);
     FAIL() << "expected ConfigError";
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("test.json:features.onnx"), std::string::npos) << e.what();
@@ -92,7 +94,7 @@ TEST(FeatureOptionsTest, ReadsAnOnnxContract) {
   const auto layout = nlohmann::json::parse(R"({"onnx": {"score_layout": "grid"}})");
   JsonFields layout_fields(layout, "test.json:features");
   try {
-    ReadFeatureOptions(layout_fields);
+    ReadJsonOptions<FeatureOptions>(layout_fields);
     FAIL() << "expected ConfigError";
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("features.onnx.score_layout: 'grid' unknown (cells, map)"),

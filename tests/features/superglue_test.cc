@@ -15,6 +15,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "slam/features/feature_options_json.h"
 #include "slam/features/matcher_options.h"
 #include "slam/features/superpoint.h"
 #include "tests/features/superglue_test_models.h"
@@ -152,16 +153,16 @@ TEST(SuperGlueOptionsTest, CheckAndJson) {
   JsonFields fields(nlohmann::json::parse(R"({"type": "superglue",
       "superglue": {"model_path": "x.onnx", "match_threshold": 0.3}})"),
                     "test");
-  const MatcherOptions read = ReadMatcherOptions(fields);
+  const MatcherOptions read = ReadJsonOptions<MatcherOptions>(fields);
   EXPECT_EQ(read.type, "superglue");
   EXPECT_EQ(read.superglue.model_path, "x.onnx");
   EXPECT_DOUBLE_EQ(read.superglue.match_threshold, 0.3);
-  EXPECT_EQ(MatcherOptionsToJson(read)["superglue"]["match_threshold"], 0.3);
+  EXPECT_EQ(ToJsonObject(read)["superglue"]["match_threshold"], 0.3);
   JsonFields typo(nlohmann::json::parse(R"({"type": "superglue", "superglue": {"treshold": 0.3}})"),
                   "test");
-  EXPECT_THROW(ReadMatcherOptions(typo), ConfigError);
+  EXPECT_THROW(ReadJsonOptions<MatcherOptions>(typo), ConfigError);
   JsonFields unknown(nlohmann::json::parse(R"({"type": "lightglue"})"), "test");
-  EXPECT_THROW(ReadMatcherOptions(unknown), ConfigError);
+  EXPECT_THROW(ReadJsonOptions<MatcherOptions>(unknown), ConfigError);
 }
 
 // The error message of constructing a matcher from `path`, or "" if none.

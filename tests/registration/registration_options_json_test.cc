@@ -13,7 +13,7 @@ TEST(ReadRegistrationOptions, ReadsNestedFieldsAndKeepsDefaults) {
     "bundle_adjustment": {"enabled": false},
     "information": {"max_linear_variance_m2": 0.5}})");
   JsonFields fields(json, "test.json:registration");
-  const RegistrationOptions o = ReadRegistrationOptions(fields);
+  const RegistrationOptions o = ReadJsonOptions<RegistrationOptions>(fields);
   EXPECT_EQ(o.min_inliers, 25);
   EXPECT_FALSE(o.second_pass);
   EXPECT_EQ(o.matching.float_ratio, 0.8);
@@ -31,7 +31,7 @@ TEST(ReadRegistrationOptions, RejectsUnknownKeysAndBadValuesWithPath) {
   const auto message = [](const char* text) {
     JsonFields fields(nlohmann::json::parse(text), "r.json:registration");
     try {
-      ReadRegistrationOptions(fields);
+      ReadJsonOptions<RegistrationOptions>(fields);
     } catch (const ConfigError& e) {
       return std::string(e.what());
     }

@@ -10,7 +10,7 @@ TEST(LcdOptionsJson, ReadsNestedFieldsAndKeepsDefaults) {
     "vocabulary": {"nndr_ratio": 0.7, "index": {"binary_kind": "lsh", "checks": 64}},
     "bayes": {"virtual_place_prior": 0.8},
     "loop_threshold": 0.2})");
-  const LoopClosureOptions o = ReadLoopClosureOptions(json, "x.json:lcd");
+  const LoopClosureOptions o = ReadJsonOptions<LoopClosureOptions>(json, "x.json:lcd");
   EXPECT_DOUBLE_EQ(o.vocabulary.nndr_ratio, 0.7);
   EXPECT_EQ(o.vocabulary.index.binary_kind, IndexKind::kLsh);
   EXPECT_EQ(o.vocabulary.index.checks, 64);
@@ -18,7 +18,7 @@ TEST(LcdOptionsJson, ReadsNestedFieldsAndKeepsDefaults) {
   EXPECT_DOUBLE_EQ(o.bayes.virtual_place_prior, 0.8);
   EXPECT_DOUBLE_EQ(o.loop_threshold, 0.2);
   const ProximityOptions p =
-      ReadProximityOptions(nlohmann::json::parse(R"({"max_paths": 1})"), "x.json:proximity");
+      ReadJsonOptions<ProximityOptions>(nlohmann::json::parse(R"({"max_paths": 1})"), "x.json:proximity");
   EXPECT_EQ(p.max_paths, 1);
   EXPECT_DOUBLE_EQ(p.local_radius_m, 1.0);
 }
@@ -26,7 +26,7 @@ TEST(LcdOptionsJson, ReadsNestedFieldsAndKeepsDefaults) {
 TEST(LcdOptionsJson, RejectsUnknownKeysBadKindsAndBadValuesWithThePath) {
   auto message = [](const char* text) {
     try {
-      ReadLoopClosureOptions(nlohmann::json::parse(text), "x.json:lcd");
+      ReadJsonOptions<LoopClosureOptions>(nlohmann::json::parse(text), "x.json:lcd");
     } catch (const ConfigError& e) {
       return std::string(e.what());
     }
@@ -35,7 +35,7 @@ TEST(LcdOptionsJson, RejectsUnknownKeysBadKindsAndBadValuesWithThePath) {
   EXPECT_NE(message(R"({"vocabulary": {"nndr": 0.7}})").find("x.json:lcd.vocabulary"), std::string::npos);
   EXPECT_NE(message(R"({"vocabulary": {"index": {"float_kind": "octree"}}})").find("octree"), std::string::npos);
   EXPECT_NE(message(R"({"loop_threshold": 3})").find("loop_threshold"), std::string::npos);
-  EXPECT_THROW(ReadProximityOptions(nlohmann::json::parse(R"({"forward_axis": [1, 0]})"), "p"),
+  EXPECT_THROW(ReadJsonOptions<ProximityOptions>(nlohmann::json::parse(R"({"forward_axis": [1, 0]})"), "p"),
                ConfigError);
 }
 

@@ -1,4 +1,4 @@
-#include "slam/engine/feature_options_json.h"
+#include "slam/features/feature_options_json.h"
 
 #include <gtest/gtest.h>
 
@@ -19,9 +19,9 @@ TEST(FeatureOptionsJsonTest, AMapsStoredOptionsReadBackAsWritten) {
   o.onnx.input_mean = {0.485, 0.456, 0.406};
   o.onnx.input_std = {0.229, 0.224, 0.225};
   o.h5.path = "feats.h5";
-  const std::string text = FeatureOptionsToJson(o).dump();
+  const std::string text = ToJsonObject(o).dump();
   const FeatureOptions back = FeatureOptionsOfMap(text, "m.db");
-  EXPECT_EQ(FeatureOptionsToJson(back), FeatureOptionsToJson(o));
+  EXPECT_EQ(ToJsonObject(back), ToJsonObject(o));
   EXPECT_EQ(back.onnx.input_mean, o.onnx.input_mean);
   EXPECT_EQ(back.sift.contrast_threshold, 0.03);
 

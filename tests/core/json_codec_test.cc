@@ -1,0 +1,113 @@
+#include "slam/core/json_codec.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "tests/testing/error_of.h"
+
+namespace duskmap {
+namespace {
+
+enum class Colour { kRed, kGreen };
+
+struct Inner {
+  int count = 3;
+  Colour colour = Colour::kRed;
+  uint64_t seed = 7;
+};
+
+struct Outer {
+  double scale_m = 1.5;
+  std::string name = "a";
+  std::vector<int> sizes = {1, 2};
+  std::map<std::string, int> per_type;
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  Inner inner;
+  void Check() const {
+    SLAM_THROW_IF_NOT(ConfigError, scale_m > 0) << "Outer.scale_m: must be > 0";
+  }
+};
+
+}  // namespace
+
+template <>
+struct JsonEnumNames<Colour> {
+  static constexpr std::pair<Colour, const char*> kNames[] = {{Colour::kRed, "red"},
+                                                              {Colour::kGreen, "green"}};
+};
+
+template <>
+struct JsonCodec<Inner> {
+  template <typename F, typename O>
+  static void Visit(F& f, O& o) {
+    f("count", o.count);
+    f("colour", o.colour);
+    f("seed", o.seed);
+  }
+};
+
+template <>
+struct JsonCodec<Outer> {
+  template <typename F, typename O>
+  static void Visit(F& f, O& o) {
+    f("scale_m", o.scale_m);
+    f("name", o.name);
+    f("sizes", o.sizes);
+    f("per_type", o.per_type);
+    f("axis", o.axis);
+    f("inner", o.inner, {{"seed", "the outer seed"}});
+  }
+};
+
+namespace {
+
+Outer Read(const char* text) { return ReadJsonOptions<Outer>(nlohmann::json::parse(text), "x.json"); }
+
+TEST(JsonCodec, ReadsDeclaredFieldsAndKeepsDefaults) {
+  const Outer o = Read(R"({"scale_m": 2, "sizes": [4], "per_type": {"loop": 3},
+                           "axis": [1, 0, 0], "inner": {"colour": "green"}})");
+  EXPECT_DOUBLE_EQ(o.scale_m, 2.0);
+  EXPECT_EQ(o.name, "a");
+  EXPECT_EQ(o.sizes, std::vector<int>{4});
+  EXPECT_EQ(o.per_type.at("loop"), 3);
+  EXPECT_TRUE(o.axis.isApprox(Eigen::Vector3d::UnitX()));
+  EXPECT_EQ(o.inner.colour, Colour::kGreen);
+  EXPECT_EQ(o.inner.count, 3);
+}
+
+TEST(JsonCodec, WritesEveryFieldButTheDerivedOnesAndReadsItBack) {
+  Outer o;
+  o.name = "b";
+  o.inner.colour = Colour::kGreen;
+  o.per_type["odometry"] = 9;
+  const nlohmann::json json = ToJsonObject(o);
+  EXPECT_EQ(json.dump(),
+            R"({"axis":[0.0,0.0,1.0],"inner":{"colour":"green","count":3},"name":"b",)"
+            R"("per_type":{"odometry":9},"scale_m":1.5,"sizes":[1,2]})");
+  const Outer back = ReadJsonOptions<Outer>(json, "back");
+  EXPECT_EQ(ToJsonObject(back), json);
+  EXPECT_EQ(ToJsonObject(o.inner)["seed"], 7);  // on its own, the inner struct has its seed
+}
+
+TEST(JsonCodec, ErrorsNameTheFullPath) {
+  using testing::ErrorOf;
+  EXPECT_EQ(ErrorOf([] { Read(R"({"inner": {"cuont": 1}})"); }),
+            "x.json.inner: unknown key 'cuont'");
+  EXPECT_EQ(ErrorOf([] { Read(R"({"inner": {"colour": "blue"}})"); }),
+            "x.json.inner.colour: expected red or green, got 'blue'");
+  EXPECT_EQ(ErrorOf([] { Read(R"({"inner": {"seed": 1}})"); }),
+            "x.json.inner.seed: not set here; the outer seed sets it");
+  EXPECT_EQ(ErrorOf([] { Read(R"({"axis": [1, 0]})"); }), "x.json.axis: expected 3 numbers, got 2");
+  EXPECT_EQ(ErrorOf([] { Read(R"({"inner": {"count": 1.5}})"); }),
+            "x.json.inner.count: expected an integer, got 1.5");
+  EXPECT_EQ(ErrorOf([] { Read(R"({"inner": 3})"); }),
+            "x.json.inner: expected a JSON object, got number");
+  EXPECT_EQ(ErrorOf([] { Read(R"({"scale_m": -1})"); }), "x.json: Outer.scale_m: must be > 0");
+  EXPECT_EQ(ErrorOf([] { Read(R"({"_comment": "free text"})"); }), "");
+}
+
+}  // namespace
+}  // namespace duskmap
