@@ -207,7 +207,7 @@ std::map<std::string, std::string> CellsByFeature(const std::string& cells_csv) 
   for (const std::string& line : Lines(cells_csv)) {
     const size_t comma = line.find(',');
     std::string rest = line.substr(comma + 1);
-    for (const std::string& kind : {"localize/", "map/"}) {
+    for (const std::string kind : {"localize/", "map/"}) {
       const std::string job = kind + line.substr(0, comma) + "/";
       for (size_t at = rest.find(job); at != std::string::npos; at = rest.find(job)) {
         rest.replace(at, job.size(), kind + "*/");

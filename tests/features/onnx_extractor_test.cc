@@ -47,7 +47,9 @@ void ExpectValidFeatures(const FrameFeatures& f, const cv::Size& image, int dims
   for (size_t i = 0; i < f.size(); ++i) {
     const cv::KeyPoint& kp = f.keypoints[i];
     EXPECT_GT(kp.response, threshold);
-    if (i > 0) EXPECT_LE(kp.response, f.keypoints[i - 1].response);  // strongest first
+    if (i > 0) {
+      EXPECT_LE(kp.response, f.keypoints[i - 1].response);  // strongest first
+    }
     EXPECT_GE(kp.pt.x, border);
     EXPECT_GE(kp.pt.y, border);
     EXPECT_LE(kp.pt.x, image.width - 1 - border);
@@ -186,7 +188,9 @@ TEST(OnnxExtractorTest, SparseModelKeypointsDescriptorsAndScores) {
       }
     }
     // Only a keypoint the border dropped before the shift can be new.
-    if (!found) EXPECT_GT(std::max(moved.pt.x - (image.cols - 1), moved.pt.y - (image.rows - 1)), -0.5f);
+    if (!found) {
+      EXPECT_GT(std::max(moved.pt.x - (image.cols - 1), moved.pt.y - (image.rows - 1)), -0.5f);
+    }
   }
   EXPECT_GT(compared, 100u);
   // Named outputs work as the defaults do; scores can be left out (then
