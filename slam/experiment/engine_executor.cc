@@ -11,7 +11,7 @@
 #include "slam/engine/session_runs.h"
 #include "slam/eval/trajectory_error.h"
 #include "slam/experiment/feature_cache.h"
-#include "slam/experiment/job_results.h"
+#include "slam/experiment/job_results_json.h"
 #include "slam/features/feature_extractor.h"
 #include "slam/map/map_memory_json.h"
 #include "slam/map/map_store.h"
@@ -248,7 +248,7 @@ void EngineJobExecutor::BuildMapJob(const Job& job, const fs::path& job_dir) {
   summary.build_wall_s = run.wall_s;
   summary.index_build_s = run.index_build_s;
   WriteJsonRows(job_dir / kFramesFile, rows);
-  WriteSummary(job_dir, summary);
+  WriteSummary(job_dir, ToJsonObject(summary));
 }
 
 void EngineJobExecutor::Localize(const Job& job, const fs::path& job_dir) {
@@ -305,7 +305,7 @@ void EngineJobExecutor::Localize(const Job& job, const fs::path& job_dir) {
   summary.mean_times_ms.total += summary.mean_times_ms.features;
   WriteJsonRows(job_dir / kFramesFile, rows);
   WriteCorrectedTrajectory((job_dir / kTrajectoryFile).string(), run.records);
-  WriteSummary(job_dir, summary);
+  WriteSummary(job_dir, ToJsonObject(summary));
 }
 
 }  // namespace duskmap

@@ -72,16 +72,17 @@ struct MapJobSummary {
   double index_build_s = 0.0;  // the stored vocabulary index, part of build_wall_s
 };
 
-void to_json(nlohmann::json& json, const StageTimesMs& times);
-void from_json(const nlohmann::json& json, StageTimesMs& times);
-void to_json(nlohmann::json& json, const LocalizationJobSummary& summary);
-void from_json(const nlohmann::json& json, LocalizationJobSummary& summary);
-void to_json(nlohmann::json& json, const MapJobSummary& summary);
-void from_json(const nlohmann::json& json, MapJobSummary& summary);
+// Their JSON form (keys, and which older summaries lack): job_results_json.h.
 
 // Writes summary.json into job_dir / reads it back; reading throws InputError
 // naming the file when it is missing or malformed.
 void WriteSummary(const std::filesystem::path& job_dir, const nlohmann::json& summary);
 nlohmann::json ReadSummary(const std::filesystem::path& job_dir);
+
+// A map or localize job's summary.json (ReadSummary) as its typed summary.
+// InputError naming the file for a key that is unknown, of the wrong type, or
+// missing (the keys added later read as their defaults when absent).
+LocalizationJobSummary ReadLocalizationJobSummary(const std::filesystem::path& job_dir);
+MapJobSummary ReadMapJobSummary(const std::filesystem::path& job_dir);
 
 }  // namespace duskmap

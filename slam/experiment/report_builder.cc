@@ -472,16 +472,10 @@ ExperimentResults CollectResults(const ExperimentPlan& plan,
     for (const fs::path& dir : results_dirs) {
       const fs::path job_dir = dir / "jobs" / job.id;
       if (!fs::is_directory(job_dir)) continue;
-      const nlohmann::json json = ReadSummary(job_dir);
-      try {
-        if (job.kind == JobKind::kLocalize) {
-          results.localization[job.id] = json.get<LocalizationJobSummary>();
-        } else {
-          results.maps[job.id] = json.get<MapJobSummary>();
-        }
-      } catch (const nlohmann::json::exception& e) {
-        SLAM_THROW(InputError) << (job_dir / "summary.json").string()
-                               << ": malformed job summary (" << e.what() << ")";
+      if (job.kind == JobKind::kLocalize) {
+        results.localization[job.id] = ReadLocalizationJobSummary(job_dir);
+      } else {
+        results.maps[job.id] = ReadMapJobSummary(job_dir);
       }
       found = true;
       break;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "slam/core/check.h"
+#include "slam/experiment/job_results_json.h"
 #include "slam/experiment/job_runner.h"
 
 namespace duskmap {
@@ -41,14 +42,14 @@ class FakeExecutor : public JobExecutor {
       s.max_gap_m = 1.0 + h / 10.0;
       s.num_within_55cm = 35 + h;
       s.matched_session_per_frame.assign(100, job.map.sessions.front());
-      WriteSummary(job_dir, s);
+      WriteSummary(job_dir, ToJsonObject(s));
     } else if (job.kind == JobKind::kBuildMap) {
       MapJobSummary s;
       s.num_nodes = 200 * static_cast<int>(job.map.sessions.size());
       s.vocabulary_words = 40000 + h;
       s.memory_bytes = {{"descriptors", 1u << 20}, {"graph", 1u << 19}};
       s.ate_mm = 20 + h;
-      WriteSummary(job_dir, s);
+      WriteSummary(job_dir, ToJsonObject(s));
     }
   }
 };
