@@ -14,11 +14,12 @@
 #include "slam/core/check.h"
 #include "slam/core/timer.h"
 #include "slam/datasets/dataset_factory.h"
-#include "slam/features/feature_options_json.h"
 #include "slam/engine/record_io.h"
 #include "slam/engine/session_runs.h"
 #include "slam/engine/session_runs_json.h"
-#include "slam/map/map_memory_json.h"
+#include "slam/experiment/job_results.h"
+#include "slam/experiment/job_results_json.h"
+#include "slam/features/feature_options_json.h"
 #include "slam/io/output_safety.h"
 #include "slam/map/map_memory.h"
 #include "slam/map/map_store.h"
@@ -51,32 +52,51 @@ void WriteRecords(const std::string& path, const std::vector<LocalizationRecord>
   });
 }
 
-nlohmann::json SummaryToJson(const std::string& session, const LocalizationRun& run,
-                             double map_load_s) {
-  const RelocalizationSummary& r = run.summary.relocalization;
-  nlohmann::json j = {{"session", session},
-                      {"frames", r.num_frames},
-                      {"relocalized", r.num_relocalized},
-                      {"relocalized_pct", r.relocalized_pct},
-                      {"evaluated", run.summary.evaluated},
-                      {"correct", r.num_correct},
-                      {"wrong", r.num_wrong},
-                      {"within_0.25m_2deg", r.num_within[0]},
-                      {"within_0.5m_5deg", r.num_within[1]},
-                      {"within_5m_10deg", r.num_within[2]},
-                      {"mean_inliers", run.summary.mean_inliers},
-                      {"mean_jump_mm", run.summary.mean_jump_mm},
-                      {"max_gap_m", run.summary.gaps.max_gap_m},
-                      {"within_55cm_pct", run.summary.gaps.within_pct},
-                      {"wall_s", run.wall_s},
-                      {"map_load_s", map_load_s},
-                      {"index_restored", run.index_restore.restored},
-                      {"index_restore_s", run.index_restore.seconds},
-                      {"localizer_setup_s", run.setup_s},
-                      {"peak_rss_bytes", PeakResidentBytes()},
-                      {"memory_bytes", ToJsonObject(run.memory)}};
-  j["timings"] = ToJsonObject(run.timings);
-  return j;
+// What `duskmap localize` prints and writes with --summary for one session:
+// the summary of a localize job of `duskmap run` (LocalizationJobSummary,
+// the same keys) and what only a command run has.
+struct LocalizeCommandSummary {
+  std::string session;
+  LocalizationJobSummary job;
+  double wall_s = 0.0;
+  size_t peak_rss_bytes = 0;     // of the process, so far
+  SessionStageTimings timings;  // median, mean and max of every stage
+};
+
+}  // namespace
+}  // namespace duskmap::cli
+
+namespace duskmap {
+
+template <>
+struct JsonCodec<cli::LocalizeCommandSummary> {
+  template <typename F, typename O>
+  static void Visit(F& f, O& o) {
+    f("session", o.session);
+    JsonCodec<LocalizationJobSummary>::Visit(f, o.job);  // its keys, not nested
+    f("wall_s", o.wall_s);
+    f("peak_rss_bytes", o.peak_rss_bytes);
+    f("timings", o.timings);
+  }
+};
+
+}  // namespace duskmap
+
+namespace duskmap::cli {
+namespace {
+
+// The map was loaded before the first session: the others had it loaded.
+LocalizeCommandSummary Summarize(const Map& map, const std::string& session,
+                                 const LocalizationRun& run, bool first, double map_load_s) {
+  LocalizeCommandSummary summary;
+  summary.session = session;
+  summary.job = SummarizeLocalization(map, run);
+  summary.job.map_load_s = first ? map_load_s : 0.0;
+  summary.job.map_from_cache = !first;
+  summary.wall_s = run.wall_s;
+  summary.peak_rss_bytes = PeakResidentBytes();
+  summary.timings = run.timings;
+  return summary;
 }
 
 // The path for one session: `path` itself with a single session, else with
@@ -195,7 +215,7 @@ RunFn SetupLocalize(CLI::App& command) {
       const std::string summary_path = SessionPath(args->summary, name, several);
       if (!records.empty()) WriteRecords(records, run.records);
       if (!trajectory.empty()) WriteCorrectedTrajectory(trajectory, run.records);
-      nlohmann::json summary = SummaryToJson(name, run, i == 0 ? map_load_s : 0.0);
+      nlohmann::json summary = ToJsonObject(Summarize(map, name, run, i == 0, map_load_s));
       if (!summary_path.empty()) {
         WriteFileAtomically(summary_path, [&](std::ostream& out) { out << summary.dump(2) << '\n'; });
       }

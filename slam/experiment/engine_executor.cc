@@ -13,34 +13,17 @@
 #include "slam/experiment/feature_cache.h"
 #include "slam/experiment/job_results_json.h"
 #include "slam/features/feature_extractor.h"
-#include "slam/map/map_memory_json.h"
 #include "slam/map/map_store.h"
 
 namespace duskmap {
 namespace fs = std::filesystem;
 namespace {
 
-StageTimesMs MeanTimes(const SessionStageTimings& timings) {
-  StageTimesMs times;
-  times.features = timings.features.mean_ms;
-  times.loop_closure_detection = timings.loop_closure_detection.mean_ms;
-  times.proximity_detection = timings.proximity_detection.mean_ms;
-  times.transformation_estimation = timings.transformation_estimation.mean_ms;
-  times.optimisation = timings.optimisation.mean_ms;
-  times.total = timings.total.mean_ms;
-  return times;
-}
-
 void WriteJsonRows(const fs::path& path, const std::vector<nlohmann::json>& rows) {
   std::ofstream out(path);
   SLAM_THROW_IF_NOT(InputError, out.good()) << path.string() << ": cannot write";
   WriteJsonLines(out, rows);
   SLAM_THROW_IF_NOT(InputError, out.good()) << path.string() << ": write failed";
-}
-
-// The summaries' memory_bytes: MapMemory's components by their JSON keys.
-std::map<std::string, size_t> MemoryComponents(const MapMemory& memory) {
-  return ToJsonObject(memory).get<std::map<std::string, size_t>>();
 }
 
 // ATE of the nodes of the session group holding the map's first session (the
@@ -229,7 +212,7 @@ void EngineJobExecutor::BuildMapJob(const Job& job, const fs::path& job_dir) {
       break;
     }
   }
-  summary.memory_bytes = MemoryComponents(run.memory);
+  summary.memory_bytes = MemoryBytesByComponent(run.memory);
   summary.ate_mm = WriteGraphAndAte(map, job_dir / kGraphFile);
   double features_sum = 0.0;
   std::vector<nlohmann::json> rows;
@@ -238,7 +221,7 @@ void EngineJobExecutor::BuildMapJob(const Job& job, const fs::path& job_dir) {
     rows.push_back(MappingResultToJson(frame));
   }
   summary.mean_features = run.frames.empty() ? 0.0 : features_sum / run.frames.size();
-  summary.mean_times_ms = MeanTimes(run.timings);
+  summary.mean_times_ms = MeanStageTimes(run.timings);
   double extraction_ms = 0.0;
   for (const std::string& session : job.map.sessions) {
     extraction_ms += ExtractionMeanMs(job.extractor, session) / job.map.sessions.size();
@@ -262,47 +245,14 @@ void EngineJobExecutor::Localize(const Job& job, const fs::path& job_dir) {
   FeatureCacheReader source(CacheFile(job.extractor, job.session));
   const LocalizationRun run = LocalizeSession(loaded.map, MapWords(loaded.words), source, options);
 
-  LocalizationJobSummary summary;
-  const RelocalizationSummary& r = run.summary.relocalization;
-  summary.num_frames = r.num_frames;
-  summary.num_relocalized = r.num_relocalized;
-  summary.has_ground_truth = run.summary.evaluated;
-  summary.num_within_threshold = r.num_within;
-  summary.num_wrong = r.num_wrong;
-  summary.mean_jump_mm = run.summary.mean_jump_mm;
-  summary.max_gap_m = run.summary.gaps.max_gap_m;
-  summary.num_within_55cm = run.summary.gaps.num_within;
-  double inliers_pct_sum = 0.0;
-  double features_sum = 0.0;
-  std::vector<nlohmann::json> rows;
-  for (const LocalizationRecord& record : run.records) {
-    features_sum += record.num_features;
-    if (record.outcome == LocalizationOutcome::kNoCandidate ||
-        (record.outcome == LocalizationOutcome::kBadSignature && record.proximity_candidates == 0)) {
-      ++summary.num_no_candidate;
-    }
-    if (record.relocalized) {
-      if (record.num_features > 0) inliers_pct_sum += 100.0 * record.inliers / record.num_features;
-      summary.matched_session_per_frame.push_back(loaded.map.sessions()[record.matched_session].name);
-    } else {
-      summary.matched_session_per_frame.emplace_back();
-    }
-    rows.push_back(LocalizationRecordToJson(record));
-  }
-  summary.mean_inliers_pct = r.num_relocalized > 0 ? inliers_pct_sum / r.num_relocalized : 0.0;
-  summary.mean_features = run.records.empty() ? 0.0 : features_sum / run.records.size();
-  summary.mean_times_ms = MeanTimes(run.timings);
-  summary.median_lcd_te_ms = run.timings.lcd_plus_te.median_ms;
-  summary.memory_bytes = MemoryComponents(run.memory);
+  LocalizationJobSummary summary = SummarizeLocalization(loaded.map, run);
   summary.map_load_s = shared.load_s;
   summary.map_from_cache = shared.from_cache;
-  summary.localizer_setup_s = run.setup_s;
-  summary.index_restore_s = run.index_restore.seconds;
-  summary.index_restored = run.index_restore.restored;
-  summary.index_rebuild_reason = run.index_restore.rebuild_reason;
   // Features came from the cache: their extraction time is the extract job's.
   summary.mean_times_ms.features = ExtractionMeanMs(job.extractor, job.session);
   summary.mean_times_ms.total += summary.mean_times_ms.features;
+  std::vector<nlohmann::json> rows;
+  for (const LocalizationRecord& record : run.records) rows.push_back(LocalizationRecordToJson(record));
   WriteJsonRows(job_dir / kFramesFile, rows);
   WriteCorrectedTrajectory((job_dir / kTrajectoryFile).string(), run.records);
   WriteSummary(job_dir, ToJsonObject(summary));

@@ -7,7 +7,9 @@
 
 #include "slam/core/check.h"
 #include "slam/core/json_fields.h"
+#include "slam/engine/session_runs.h"
 #include "slam/experiment/job_results_json.h"
+#include "slam/map/map_memory_json.h"
 
 namespace duskmap {
 namespace {
@@ -69,6 +71,59 @@ T ReadJobSummary(const std::filesystem::path& job_dir) {
 }
 
 }  // namespace
+
+StageTimesMs MeanStageTimes(const SessionStageTimings& timings) {
+  StageTimesMs times;
+  times.features = timings.features.mean_ms;
+  times.loop_closure_detection = timings.loop_closure_detection.mean_ms;
+  times.proximity_detection = timings.proximity_detection.mean_ms;
+  times.transformation_estimation = timings.transformation_estimation.mean_ms;
+  times.optimisation = timings.optimisation.mean_ms;
+  times.total = timings.total.mean_ms;
+  return times;
+}
+
+std::map<std::string, size_t> MemoryBytesByComponent(const MapMemory& memory) {
+  return ToJsonObject(memory).get<std::map<std::string, size_t>>();
+}
+
+LocalizationJobSummary SummarizeLocalization(const Map& map, const LocalizationRun& run) {
+  LocalizationJobSummary summary;
+  const RelocalizationSummary& r = run.summary.relocalization;
+  summary.num_frames = r.num_frames;
+  summary.num_relocalized = r.num_relocalized;
+  summary.has_ground_truth = run.summary.evaluated;
+  summary.num_within_threshold = r.num_within;
+  summary.num_wrong = r.num_wrong;
+  summary.mean_jump_mm = run.summary.mean_jump_mm;
+  summary.max_gap_m = run.summary.gaps.max_gap_m;
+  summary.num_within_55cm = run.summary.gaps.num_within;
+  double inliers_pct_sum = 0.0;
+  double features_sum = 0.0;
+  for (const LocalizationRecord& record : run.records) {
+    features_sum += record.num_features;
+    if (record.outcome == LocalizationOutcome::kNoCandidate ||
+        (record.outcome == LocalizationOutcome::kBadSignature && record.proximity_candidates == 0)) {
+      ++summary.num_no_candidate;
+    }
+    if (record.relocalized) {
+      if (record.num_features > 0) inliers_pct_sum += 100.0 * record.inliers / record.num_features;
+      summary.matched_session_per_frame.push_back(map.sessions()[record.matched_session].name);
+    } else {
+      summary.matched_session_per_frame.emplace_back();
+    }
+  }
+  summary.mean_inliers_pct = r.num_relocalized > 0 ? inliers_pct_sum / r.num_relocalized : 0.0;
+  summary.mean_features = run.records.empty() ? 0.0 : features_sum / run.records.size();
+  summary.mean_times_ms = MeanStageTimes(run.timings);
+  summary.median_lcd_te_ms = run.timings.lcd_plus_te.median_ms;
+  summary.memory_bytes = MemoryBytesByComponent(run.memory);
+  summary.localizer_setup_s = run.setup_s;
+  summary.index_restore_s = run.index_restore.seconds;
+  summary.index_restored = run.index_restore.restored;
+  summary.index_rebuild_reason = run.index_restore.rebuild_reason;
+  return summary;
+}
 
 void WriteSummary(const std::filesystem::path& job_dir, const nlohmann::json& summary) {
   const std::filesystem::path path = job_dir / "summary.json";

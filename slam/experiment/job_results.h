@@ -1,6 +1,7 @@
 // What the jobs of an experiment leave behind for the report: one summary per
 // localization job and per map job, stored as summary.json in the job's
 // folder. Per-frame records stay in the job folder (frames.jsonl) for figures.
+// `duskmap localize --summary` writes the same localization summary.
 #pragma once
 
 #include <array>
@@ -12,6 +13,11 @@
 #include <nlohmann/json.hpp>
 
 namespace duskmap {
+
+class Map;
+struct LocalizationRun;
+struct MapMemory;
+struct SessionStageTimings;
 
 // Mean per-frame time of each stage, milliseconds.
 struct StageTimesMs {
@@ -73,6 +79,16 @@ struct MapJobSummary {
 };
 
 // Their JSON form (keys, and which older summaries lack): job_results_json.h.
+
+// The mean per-frame time of each stage of `timings`.
+StageTimesMs MeanStageTimes(const SessionStageTimings& timings);
+// MapMemory's components by their JSON keys (the summaries' memory_bytes).
+std::map<std::string, size_t> MemoryBytesByComponent(const MapMemory& memory);
+// The summary of the localization of one session on `map`, but for how the
+// map was had (map_load_s, map_from_cache), which only the caller knows. The
+// mean times are the run's: it counts no time for features it did not
+// extract (read from a feature cache).
+LocalizationJobSummary SummarizeLocalization(const Map& map, const LocalizationRun& run);
 
 // Writes summary.json into job_dir / reads it back; reading throws InputError
 // naming the file when it is missing or malformed.

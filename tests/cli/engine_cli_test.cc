@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "slam/experiment/job_results_json.h"
 #include "tests/testing/run_duskmap.h"
 
 namespace {
@@ -59,11 +60,22 @@ TEST_F(EngineCli, MapThenLocalizeWritesOutputs) {
                  "/a.jsonl --trajectory " + dir_ + "/a.tum --summary " + dir_ + "/a.json");
   ASSERT_EQ(localize.exit_code, 0) << localize.output;
   const auto summary = nlohmann::json::parse(std::ifstream(dir_ + "/a.json"));
-  EXPECT_EQ(summary["frames"], 8);
-  EXPECT_TRUE(summary["evaluated"].get<bool>());
-  EXPECT_EQ(summary["wrong"], 0);
+  EXPECT_EQ(summary["num_frames"], 8);
+  EXPECT_TRUE(summary["has_ground_truth"].get<bool>());
+  EXPECT_EQ(summary["num_wrong"], 0);
+  EXPECT_EQ(summary["matched_session_per_frame"].size(), 8u);
   EXPECT_GT(summary["memory_bytes"]["filter"].get<double>(), 0.0);
   EXPECT_GT(summary["memory_bytes"]["words_index"].get<double>(), 0.0);
+  EXPECT_GT(summary["timings"]["total"]["max_ms"].get<double>(), 0.0);
+  // One schema: the summary of a localize job of `duskmap run`, every key of
+  // it and no other, and what only a command run has.
+  nlohmann::json job = summary;
+  for (const char* key : {"session", "wall_s", "peak_rss_bytes", "timings"}) {
+    EXPECT_EQ(job.erase(key), 1u) << key;
+  }
+  EXPECT_EQ(duskmap::ToJsonObject(
+                duskmap::ReadJsonOptions<duskmap::LocalizationJobSummary>(job, "a.json")),
+            job);
   std::ifstream records(dir_ + "/a.jsonl");
   int lines = 0;
   for (std::string line; std::getline(records, line); ++lines) {
@@ -118,8 +130,11 @@ TEST_F(EngineCli, SeveralSessionsOnOneLoadEqualSeparateRuns) {
   const auto summary = nlohmann::json::parse(std::ifstream(dir_ + "/multi_A.json"));
   EXPECT_EQ(summary["session"], "A");
   EXPECT_TRUE(summary["index_restored"].get<bool>());
+  EXPECT_EQ(summary["map_load_s"], 0.0);
+  EXPECT_TRUE(summary["map_from_cache"].get<bool>());
   const auto first = nlohmann::json::parse(std::ifstream(dir_ + "/multi_1.json"));
   EXPECT_GT(first["map_load_s"].get<double>(), 0.0);  // the one load, on the first session
+  EXPECT_FALSE(first["map_from_cache"].get<bool>());
   EXPECT_EQ(FileBytes(map), saved) << "localize modified the map";
 
   // Several sessions need {session} in every output path; a session twice is refused.

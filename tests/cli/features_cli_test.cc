@@ -301,8 +301,8 @@ TEST_F(FeaturesCli, ExternalExtractorScriptRoundTrip) {
                                      "/external_a.json");
   ASSERT_EQ(localize.exit_code, 0) << localize.output;
   const auto summary = nlohmann::json::parse(std::ifstream(dir_ + "/external_a.json"));
-  EXPECT_EQ(summary["frames"], 8);
-  EXPECT_GT(summary["relocalized"].get<int>(), 0) << summary.dump();
+  EXPECT_EQ(summary["num_frames"], 8);
+  EXPECT_GT(summary["num_relocalized"].get<int>(), 0) << summary.dump();
 }
 
 }  // namespace
