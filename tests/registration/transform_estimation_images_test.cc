@@ -9,6 +9,7 @@
 #include "slam/features/feature_extractor.h"
 #include "slam/registration/transform_estimation.h"
 #include "tests/registration/plane_pair.h"
+#include "tests/testing/rigid3d_near.h"
 
 namespace duskmap {
 namespace {
@@ -42,10 +43,8 @@ TEST_P(TransformEstimationImages, DarkerQueriesRegisterAgainstGroundTruth) {
         EstimateTransform({}, map_node, pair.camera, query, pair.camera);
     ASSERT_TRUE(result.accepted()) << RegistrationStatusName(result.status);
     EXPECT_GE(result.num_inliers, 100);
-    EXPECT_LT((result.node_from_query.translation - pair.node_from_query.translation).norm(),
-              tolerance.max_error_m);
-    EXPECT_LT(RotationAngleRad(result.node_from_query.rotation, pair.node_from_query.rotation),
-              tolerance.max_error_deg * M_PI / 180.0);
+    EXPECT_THAT(result.node_from_query,
+                testing::Rigid3dNear(pair.node_from_query, tolerance.max_error_m, tolerance.max_error_deg));
   }
 }
 

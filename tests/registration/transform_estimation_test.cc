@@ -7,23 +7,15 @@
 
 #include "slam/core/check.h"
 #include "tests/registration/synthetic_pair.h"
+#include "tests/testing/rigid3d_near.h"
 
 namespace duskmap {
 namespace {
 
 using testing::MakeSyntheticPair;
+using testing::Rigid3dNear;
 using testing::SyntheticPair;
 using testing::SyntheticPairOptions;
-
-constexpr double kDegToRad = M_PI / 180.0;
-
-void ExpectPoseNear(const Rigid3d& expected, const Rigid3d& actual, double max_translation_m,
-                    double max_angle_deg) {
-  EXPECT_LT((expected.translation - actual.translation).norm(), max_translation_m)
-      << "expected " << expected << " got " << actual;
-  EXPECT_LT(RotationAngleRad(expected.rotation, actual.rotation), max_angle_deg * kDegToRad)
-      << "expected " << expected << " got " << actual;
-}
 
 RegistrationResult Estimate(const SyntheticPair& pair, const RegistrationOptions& options = {}) {
   return EstimateTransform(options, pair.map_node, pair.camera, pair.query, pair.camera);
@@ -36,7 +28,7 @@ TEST(EstimateTransform, RecoversPoseWithHalfOutliersFloat) {
   const SyntheticPair pair = MakeSyntheticPair(data);
   const RegistrationResult result = Estimate(pair);
   ASSERT_TRUE(result.accepted()) << RegistrationStatusName(result.status);
-  ExpectPoseNear(pair.node_from_query, result.node_from_query, 0.01, 0.5);
+  EXPECT_THAT(result.node_from_query, Rigid3dNear(pair.node_from_query, 0.01, 0.5));
   EXPECT_GE(result.num_inliers, 120);
   EXPECT_LE(result.num_inliers, 150 + 5);  // outliers do not sneak in
   // Half the global matches are outliers; the guided pass mostly finds inliers.
@@ -59,7 +51,7 @@ TEST(EstimateTransform, RecoversPoseWithHalfOutliersBinaryAndQueryDepth) {
   const SyntheticPair pair = MakeSyntheticPair(data);
   const RegistrationResult result = Estimate(pair);
   ASSERT_TRUE(result.accepted()) << RegistrationStatusName(result.status);
-  ExpectPoseNear(pair.node_from_query, result.node_from_query, 0.01, 0.5);
+  EXPECT_THAT(result.node_from_query, Rigid3dNear(pair.node_from_query, 0.01, 0.5));
 }
 
 TEST(EstimateTransform, RejectsBelowMinInliersWithReason) {
@@ -99,7 +91,7 @@ TEST(EstimateTransform, SecondPassRecoversAmbiguousFeatures) {
   EXPECT_FALSE(first_only.second_pass_ran);
   EXPECT_GT(both.inliers_second_pass, both.inliers_first_pass + 100);
   EXPECT_GT(both.num_inliers, first_only.num_inliers + 100);
-  ExpectPoseNear(pair.node_from_query, both.node_from_query, 0.01, 0.5);
+  EXPECT_THAT(both.node_from_query, Rigid3dNear(pair.node_from_query, 0.01, 0.5));
 }
 
 TEST(EstimateTransform, FailedSecondPassFailsTheRegistration) {
@@ -136,8 +128,8 @@ TEST(EstimateTransform, BundleAdjustmentFailureRejectsWithItsStatus) {
   no_ba.bundle_adjustment.enabled = false;
   const RegistrationResult without = Estimate(pair, no_ba);
   ASSERT_TRUE(without.accepted()) << RegistrationStatusName(without.status);
-  ExpectPoseNear(Rigid3d(flip, Eigen::Vector3d::Zero()) * pair.node_from_query,
-                 without.node_from_query, 0.01, 0.5);
+  EXPECT_THAT(without.node_from_query,
+              Rigid3dNear(Rigid3d(flip, Eigen::Vector3d::Zero()) * pair.node_from_query, 0.01, 0.5));
 }
 
 TEST(EstimateTransform, VarianceLimitRejects) {
@@ -205,7 +197,7 @@ TEST(EstimateTransform, NonFiniteMapPointsAreIgnored) {
   }
   const RegistrationResult partial = Estimate(pair);
   ASSERT_TRUE(partial.accepted()) << RegistrationStatusName(partial.status);
-  ExpectPoseNear(pair.node_from_query, partial.node_from_query, 0.01, 0.5);
+  EXPECT_THAT(partial.node_from_query, Rigid3dNear(pair.node_from_query, 0.01, 0.5));
 
   for (Eigen::Vector3f& p : pair.map_node.points_in_camera) p.setConstant(nan);
   const RegistrationResult none = Estimate(pair);
@@ -220,7 +212,7 @@ TEST(EstimateTransform, NonFiniteKeypointsAreIgnored) {
   for (size_t i = 1; i < pair.query.size(); i += 4) pair.query.keypoints[i].pt.y = nan;
   const RegistrationResult result = Estimate(pair);
   ASSERT_TRUE(result.accepted()) << RegistrationStatusName(result.status);
-  ExpectPoseNear(pair.node_from_query, result.node_from_query, 0.01, 0.5);
+  EXPECT_THAT(result.node_from_query, Rigid3dNear(pair.node_from_query, 0.01, 0.5));
   for (const cv::DMatch& m : result.inlier_matches) {
     EXPECT_FALSE(std::isnan(pair.map_node.keypoints[m.trainIdx].pt.x));
     EXPECT_FALSE(std::isnan(pair.query.keypoints[m.queryIdx].pt.y));
