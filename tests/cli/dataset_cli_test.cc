@@ -2,30 +2,17 @@
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <string>
 
+#include "tests/testing/fixture_cache.h"
+#include "tests/testing/run_duskmap.h"
+
 namespace {
 
-struct Result {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
-
-Result RunDuskmap(const std::string& args) {
-  Result result;
-  const std::string command = std::string(DUSKMAP_EXE) + " " + args + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer;
-  while (fgets(buffer.data(), buffer.size(), pipe)) result.output += buffer.data();
-  const int status = pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+using Result = duskmap::testing::CliResult;
+using duskmap::testing::RunDuskmap;
 
 std::string RtabmapDir() {
   const std::filesystem::path dir = std::filesystem::path(DUSKMAP_SHARED_DIR) / "data" / "rtabmap";
@@ -69,9 +56,7 @@ TEST(DatasetInfo, BadInputIsAOneLineErrorAndExitCodeOne) {
 TEST(DatasetInfo, SkipBadFramesReportsTheCount) {
   const std::string dir = RtabmapDir();
   if (dir.empty()) GTEST_SKIP() << "shared RTAB-Map fixtures not found; skipping";
-  const std::filesystem::path tmp = std::filesystem::temp_directory_path() / "duskmap_cli_skip";
-  std::filesystem::remove_all(tmp);
-  std::filesystem::create_directories(tmp);
+  const std::filesystem::path tmp = duskmap::testing::ProcessTempDir("cli_skip");
   const std::string db = (tmp / "s.db").string();
   std::filesystem::copy_file(dir + "/rtabmap-db/session_small.db", db);
   std::filesystem::permissions(db, std::filesystem::perms::owner_write,

@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "slam/experiment/job_results_json.h"
+#include "tests/testing/fixture_cache.h"
 #include "tests/testing/run_duskmap.h"
 
 namespace {
@@ -29,8 +30,7 @@ using duskmap::testing::RunDuskmap;
 class EngineCli : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = (fs::temp_directory_path() / ("duskmap_engine_cli_" + std::to_string(::getpid()))).string();
-    fs::create_directories(dir_);
+    dir_ = duskmap::testing::ProcessTempDir("engine_cli");
     const Result generated = duskmap::testing::GenerateSmallApartment(
         dir_, 8,
         {{{"name", "1"}, {"clock_time", "16:46"}, {"role", "mapping"}},

@@ -19,6 +19,7 @@
 
 #include "tests/features/onnx_test_models.h"
 #include "tests/features/two_plane_pair.h"
+#include "tests/testing/fixture_cache.h"
 #include "tests/testing/run_duskmap.h"
 
 namespace {
@@ -49,8 +50,7 @@ std::vector<nlohmann::json> RecordsWithoutTimings(const std::string& path) {
 class FeaturesCli : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = (fs::temp_directory_path() / ("duskmap_features_cli_" + std::to_string(::getpid()))).string();
-    fs::create_directories(dir_);
+    dir_ = duskmap::testing::ProcessTempDir("features_cli");
     const Result generated = duskmap::testing::GenerateSmallApartment(
         dir_, 8,
         {{{"name", "1"}, {"clock_time", "16:46"}, {"role", "mapping"}},

@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "tests/testing/fixture_cache.h"
 #include "tests/testing/run_duskmap.h"
 
 namespace {
@@ -46,8 +47,7 @@ std::map<std::string, std::string> DeterministicTables(const fs::path& report) {
 class RunCli : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = fs::temp_directory_path() / ("duskmap_run_cli_" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
+    dir_ = duskmap::testing::ProcessTempDir("run_cli");
     nlohmann::json config = nlohmann::json::parse(
         std::ifstream(std::string(DUSKMAP_SOURCE_DIR) + "/configs/sunset_apartment.json"));
     config["max_frames"] = 10;

@@ -2,12 +2,9 @@
 // must refuse (issue 21). Every case asserts the exit code, that the one-line
 // message names the file and the problem, and that every file that existed
 // before is byte-identical afterwards.
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -18,29 +15,15 @@
 #include <nlohmann/json.hpp>
 
 #include "slam/io/output_safety.h"
+#include "tests/testing/fixture_cache.h"
+#include "tests/testing/run_duskmap.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
-
-// Runs `duskmap <args>` through the shell; `prefix` goes before it (a `cd`, a
-// ulimit).
-Result RunDuskmap(const std::string& args, const std::string& prefix = "") {
-  Result result;
-  const std::string command = prefix + std::string(DUSKMAP_EXE) + " " + args + " 2>&1";
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer;
-  while (size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
-  const int status = ::pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+using Result = duskmap::testing::CliResult;
+using duskmap::testing::RunDuskmap;
 
 std::string ReadText(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -75,9 +58,7 @@ void ExpectOneLineError(const Result& r, const std::vector<std::string>& needles
 class SafetyCli : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = fs::temp_directory_path() / ("duskmap_safety_cli_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = duskmap::testing::ProcessTempDir("safety_cli");
     nlohmann::json config = nlohmann::json::parse(
         std::ifstream(std::string(DUSKMAP_SOURCE_DIR) + "/configs/sunset_apartment.json"));
     config["max_frames"] = 6;

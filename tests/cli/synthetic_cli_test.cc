@@ -1,10 +1,5 @@
 // End-to-end tests of `duskmap generate` and `duskmap dataset-stats`: exit
 // codes and one-line errors naming the file and the problem.
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -12,31 +7,15 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/testing/fixture_cache.h"
+#include "tests/testing/run_duskmap.h"
+
 namespace {
 namespace fs = std::filesystem;
 
-struct Result {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
-
-Result RunDuskmap(const std::string& args) {
-  const std::string command = std::string(DUSKMAP_EXE) + " " + args + " 2>&1";
-  Result result;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  std::array<char, 4096> buffer;
-  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) result.output += buffer.data();
-  const int status = ::pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
-
-fs::path TempRoot(const std::string& name) {
-  const fs::path root = fs::temp_directory_path() / ("duskmap_cli_synth_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(root);
-  fs::create_directories(root);
-  return root;
-}
+using Result = duskmap::testing::CliResult;
+using duskmap::testing::ProcessTempDir;
+using duskmap::testing::RunDuskmap;
 
 // A tiny config: 2 sessions of 3 frames at 160x120.
 std::string SmallConfig(const fs::path& root, const std::string& extra = "") {
@@ -60,7 +39,7 @@ int CountLines(const std::string& s) {
 }
 
 TEST(GenerateCli, GeneratesThenRefusesToOverwrite) {
-  const fs::path root = TempRoot("overwrite");
+  const fs::path root = ProcessTempDir("cli_synth_overwrite");
   const std::string out = (root / "data").string();
   const Result first = RunDuskmap("generate --config " + SmallConfig(root) + " --output " + out);
   ASSERT_EQ(first.exit_code, 0) << first.output;
@@ -74,7 +53,7 @@ TEST(GenerateCli, GeneratesThenRefusesToOverwrite) {
 }
 
 TEST(GenerateCli, UnknownConfigKeyIsNamed) {
-  const fs::path root = TempRoot("unknown_key");
+  const fs::path root = ProcessTempDir("cli_synth_unknown_key");
   const Result r = RunDuskmap("generate --config " + SmallConfig(root, R"("sead": 3, )") + " --output " + (root / "data").string());
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(CountLines(r.output), 1) << r.output;
@@ -84,7 +63,7 @@ TEST(GenerateCli, UnknownConfigKeyIsNamed) {
 }
 
 TEST(GenerateCli, MalformedConfigNamesTheFile) {
-  const fs::path root = TempRoot("malformed");
+  const fs::path root = ProcessTempDir("cli_synth_malformed");
   const std::string path = (root / "broken.json").string();
   std::ofstream(path) << "{\"seed\": ";
   const Result r = RunDuskmap("generate --config " + path + " --output " + (root / "data").string());
@@ -94,7 +73,7 @@ TEST(GenerateCli, MalformedConfigNamesTheFile) {
 }
 
 TEST(GenerateCli, UnwritableOutputFolderFails) {
-  const fs::path root = TempRoot("unwritable");
+  const fs::path root = ProcessTempDir("cli_synth_unwritable");
   std::ofstream((root / "a_file").string()) << "x";
   const std::string out = (root / "a_file" / "data").string();  // parent is a file
   const Result r = RunDuskmap("generate --config " + SmallConfig(root) + " --output " + out);
@@ -104,7 +83,7 @@ TEST(GenerateCli, UnwritableOutputFolderFails) {
 }
 
 TEST(DatasetStatsCli, PrintsTheMatricesAndRejectsATruncatedSequence) {
-  const fs::path root = TempRoot("stats");
+  const fs::path root = ProcessTempDir("cli_synth_stats");
   const std::string out = (root / "data").string();
   ASSERT_EQ(RunDuskmap("generate --config " + SmallConfig(root) + " --output " + out).exit_code, 0);
   const Result ok = RunDuskmap("dataset-stats --dataset " + out + " --frame-step 1 --max-features 300");
@@ -124,7 +103,7 @@ TEST(DatasetStatsCli, PrintsTheMatricesAndRejectsATruncatedSequence) {
 // --pairs-csv lists every corresponding frame pair behind the matrices; a
 // path that cannot be written fails at once, naming it, before any matching.
 TEST(DatasetStatsCli, WritesTheFramePairsAndRefusesAnUnwritablePath) {
-  const fs::path root = TempRoot("pairs");
+  const fs::path root = ProcessTempDir("cli_synth_pairs");
   const std::string out = (root / "data").string();
   ASSERT_EQ(RunDuskmap("generate --config " + SmallConfig(root) + " --output " + out).exit_code, 0);
   const std::string csv = (root / "pairs.csv").string();

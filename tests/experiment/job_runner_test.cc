@@ -8,10 +8,13 @@
 #include <gtest/gtest.h>
 
 #include "slam/core/check.h"
+#include "tests/testing/fixture_cache.h"
 
 namespace duskmap {
 namespace fs = std::filesystem;
 namespace {
+
+using testing::ProcessTempDir;
 
 ExperimentPlan SmallPlan() {
   ExperimentOptions options;
@@ -46,15 +49,9 @@ class RecordingExecutor : public JobExecutor {
   std::vector<std::string> executed_;
 };
 
-fs::path FreshDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("duskmap_job_runner_" + name);
-  fs::remove_all(dir);
-  return dir;
-}
-
 TEST(RunJobs, RunsEveryJobOnceInParallelRespectingDependencies) {
   const ExperimentPlan plan = SmallPlan();
-  const fs::path dir = FreshDir("parallel");
+  const fs::path dir = ProcessTempDir("job_runner_parallel");
   RecordingExecutor executor(dir, {});
   int progress_calls = 0;
   const JobRunSummary summary = RunJobs(plan, executor, {dir, 2, false},
@@ -70,7 +67,7 @@ TEST(RunJobs, RunsEveryJobOnceInParallelRespectingDependencies) {
 TEST(RunJobs, FarMoreWorkersThanJobsRunEveryJobOnce) {
   // --jobs 100000 used to start 100,000 threads and abort when one failed.
   const ExperimentPlan plan = SmallPlan();
-  const fs::path dir = FreshDir("many_workers");
+  const fs::path dir = ProcessTempDir("job_runner_many_workers");
   RecordingExecutor executor(dir, {});
   const JobRunSummary summary = RunJobs(plan, executor, {dir, 100000, false});
   EXPECT_TRUE(summary.ok());
@@ -108,7 +105,7 @@ TEST(PlanExperiment, ListsTheLocalizationsOfAMapTogetherAfterTheirDependencies) 
 
 TEST(RunJobs, ResumeSkipsFinishedJobsAndRerunsPartialOnes) {
   const ExperimentPlan plan = SmallPlan();
-  const fs::path dir = FreshDir("resume");
+  const fs::path dir = ProcessTempDir("job_runner_resume");
   const std::string failing = "map/SI/1+2";
   {
     RecordingExecutor first(dir, {failing});
@@ -130,7 +127,7 @@ TEST(RunJobs, ResumeSkipsFinishedJobsAndRerunsPartialOnes) {
 TEST(RunJobs, RejectsInvalidOptions) {
   RecordingExecutor executor("x", {});
   EXPECT_THROW(RunJobs(SmallPlan(), executor, {"", 1, false}), ConfigError);
-  EXPECT_THROW(RunJobs(SmallPlan(), executor, {FreshDir("bad"), 0, false}), ConfigError);
+  EXPECT_THROW(RunJobs(SmallPlan(), executor, {ProcessTempDir("job_runner_bad"), 0, false}), ConfigError);
 }
 
 }  // namespace

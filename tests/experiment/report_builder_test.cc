@@ -5,10 +5,13 @@
 #include "slam/core/check.h"
 #include "slam/experiment/job_results_json.h"
 #include "slam/experiment/job_runner.h"
+#include "tests/testing/fixture_cache.h"
 
 namespace duskmap {
 namespace fs = std::filesystem;
 namespace {
+
+using testing::ProcessTempDir;
 
 ExperimentOptions SmallOptions() {
   ExperimentOptions options;
@@ -54,16 +57,10 @@ class FakeExecutor : public JobExecutor {
   }
 };
 
-fs::path FreshDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("duskmap_report_" + name);
-  fs::remove_all(dir);
-  return dir;
-}
-
 TEST(BuildReport, AggregatesCellsOverSessionsBesideThePaper) {
   const ExperimentOptions options = SmallOptions();
   const ExperimentPlan plan = PlanExperiment(options, Clock());
-  const fs::path dir = FreshDir("single");
+  const fs::path dir = ProcessTempDir("report_single");
   FakeExecutor executor;
   ASSERT_TRUE(RunJobs(plan, executor, {dir, 1, false}).ok());
   const ExperimentResults results = CollectResults(plan, {dir});
@@ -154,11 +151,11 @@ TEST(BuildReport, MergedShardsEqualOneUnshardedRun) {
   const ExperimentOptions options = SmallOptions();
   const ExperimentPlan plan = PlanExperiment(options, Clock());
   FakeExecutor executor;
-  const fs::path whole = FreshDir("whole");
+  const fs::path whole = ProcessTempDir("report_whole");
   ASSERT_TRUE(RunJobs(plan, executor, {whole, 1, false}).ok());
   std::vector<fs::path> shards;
   for (int i = 0; i < 3; ++i) {
-    shards.push_back(FreshDir("shard" + std::to_string(i)));
+    shards.push_back(ProcessTempDir("report_shard" + std::to_string(i)));
     ASSERT_TRUE(RunJobs(SelectShard(plan, i, 3), executor, {shards.back(), 1, false}).ok());
   }
   const ExperimentReport one = BuildReport(options, plan, CollectResults(plan, {whole}), {});
@@ -175,7 +172,7 @@ TEST(BuildReport, MergedShardsEqualOneUnshardedRun) {
 TEST(CollectResults, MalformedSummaryNamesTheFile) {
   const ExperimentOptions options = SmallOptions();
   const ExperimentPlan plan = PlanExperiment(options, Clock());
-  const fs::path dir = FreshDir("malformed");
+  const fs::path dir = ProcessTempDir("report_malformed");
   const fs::path job_dir = OutputDir(dir, "map/SI/1");
   fs::create_directories(job_dir);
   WriteSummary(job_dir, nlohmann::json{{"num_nodes", "many"}});

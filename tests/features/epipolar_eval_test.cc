@@ -1,7 +1,5 @@
 #include "slam/features/epipolar_eval.h"
 
-#include <unistd.h>
-
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -15,20 +13,15 @@
 #include "slam/features/h5_feature_file.h"
 #include "tests/features/test_images.h"
 #include "tests/testing/error_of.h"
+#include "tests/testing/fixture_cache.h"
 #include "tests/features/two_plane_pair.h"
 
 namespace duskmap {
 namespace {
 namespace fs = std::filesystem;
 
-fs::path TempRoot(const std::string& name) {
-  const fs::path root =
-      fs::temp_directory_path() / ("duskmap_epipolar_" + std::to_string(::getpid())) / name;
-  fs::create_directories(root);
-  return root;
-}
-
 using testing::ErrorOf;
+using testing::ProcessTempDir;
 
 TEST(SymmetricEpipolarDistance, MeanOfTheTwoPointToLineDistances) {
   // Pure translation along x with identity intrinsics: epipolar lines are rows.
@@ -42,7 +35,7 @@ TEST(SymmetricEpipolarDistance, MeanOfTheTwoPointToLineDistances) {
 }
 
 TEST(EpipolarEval, TwoPlanePairIsSolvedAndAWrongGroundTruthIsNot) {
-  const fs::path root = TempRoot("solve");
+  const fs::path root = ProcessTempDir("epipolar_solve");
   const testing::TwoPlanePair geometry;
   geometry.Write(root / "scenes" / "planes");
   geometry.Write(root / "scenes" / "planes_wrong_truth", 25.0);
@@ -80,7 +73,7 @@ TEST(EpipolarEval, TwoPlanePairIsSolvedAndAWrongGroundTruthIsNot) {
 // Every type is scored this way, the imported h5 one included: SIFT's
 // features exported into "<pair name>/01.png" groups give SIFT's result.
 TEST(EpipolarEval, ImportedFeaturesAreScoredLikeTheirSource) {
-  const fs::path root = TempRoot("h5");
+  const fs::path root = ProcessTempDir("epipolar_h5");
   testing::TwoPlanePair().Write(root / "planes");
   const std::vector<CorrespondencePair> pairs = FindCorrespondencePairs((root / "planes").string());
   ASSERT_EQ(pairs.size(), 1u);
@@ -105,7 +98,7 @@ TEST(EpipolarEval, ImportedFeaturesAreScoredLikeTheirSource) {
 }
 
 TEST(EpipolarEval, BadPairFoldersAreNamedInOneLine) {
-  const fs::path root = TempRoot("bad");
+  const fs::path root = ProcessTempDir("epipolar_bad");
   const fs::path pair = root / "pair";
   testing::TwoPlanePair().Write(pair);
   const std::string corrs = (pair / "corrs.txt").string();

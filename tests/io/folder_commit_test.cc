@@ -9,20 +9,16 @@
 #include <gtest/gtest.h>
 
 #include "slam/core/check.h"
+#include "tests/testing/fixture_cache.h"
 
 namespace duskmap {
 namespace {
 namespace fs = std::filesystem;
 
-fs::path TempRoot(const std::string& name) {
-  const fs::path root = fs::temp_directory_path() / ("duskmap_commit_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(root);
-  fs::create_directories(root);
-  return root;
-}
+using testing::ProcessTempDir;
 
 TEST(StagedFolder, CommitRenamesIntoPlace) {
-  const fs::path root = TempRoot("commit");
+  const fs::path root = ProcessTempDir("commit_commit");
   const std::string final_path = (root / "out").string();
   {
     StagedFolder staged(final_path, false, OwnedDataset());
@@ -35,7 +31,7 @@ TEST(StagedFolder, CommitRenamesIntoPlace) {
 }
 
 TEST(StagedFolder, FailureBeforeCommitLeavesNothing) {
-  const fs::path root = TempRoot("abort");
+  const fs::path root = ProcessTempDir("commit_abort");
   const std::string final_path = (root / "out").string();
   try {
     StagedFolder staged(final_path, false, OwnedDataset());
@@ -48,7 +44,7 @@ TEST(StagedFolder, FailureBeforeCommitLeavesNothing) {
 }
 
 TEST(StagedFolder, ExistingFolderNeedsOverwrite) {
-  const fs::path root = TempRoot("exists");
+  const fs::path root = ProcessTempDir("commit_exists");
   const std::string final_path = (root / "out").string();
   fs::create_directories(final_path);
   std::ofstream(final_path + "/old.txt") << "old";
@@ -68,20 +64,20 @@ TEST(StagedFolder, ExistingFolderNeedsOverwrite) {
 
 TEST(StagedFolder, UnwritableParentThrows) {
   if (::geteuid() == 0) GTEST_SKIP() << "running as root: permissions are not enforced";
-  const fs::path root = TempRoot("readonly");
+  const fs::path root = ProcessTempDir("commit_readonly");
   ::chmod(root.c_str(), 0555);
   EXPECT_THROW(StagedFolder((root / "out").string(), false, OwnedDataset()), InputError);
   ::chmod(root.c_str(), 0755);
 }
 
 TEST(StagedFolder, ParentIsAFileThrows) {
-  const fs::path root = TempRoot("file_parent");
+  const fs::path root = ProcessTempDir("commit_file_parent");
   std::ofstream((root / "plain").string()) << "x";
   EXPECT_THROW(StagedFolder((root / "plain" / "out").string(), false, OwnedDataset()), InputError);
 }
 
 TEST(StagedFolder, OverwriteRefusesWhatDuskmapDidNotWrite) {
-  const fs::path root = TempRoot("foreign");
+  const fs::path root = ProcessTempDir("commit_foreign");
   const std::string final_path = (root / "mine").string();
   fs::create_directories(final_path);
   std::ofstream(final_path + "/thesis.tex") << "years of work";
@@ -102,7 +98,7 @@ TEST(StagedFolder, OverwriteRefusesWhatDuskmapDidNotWrite) {
 }
 
 TEST(StagedFolder, NeverReplacesTheCurrentFolderOrItsParents) {
-  const fs::path root = TempRoot("cwd");
+  const fs::path root = ProcessTempDir("commit_cwd");
   const fs::path inner = root / "work";
   fs::create_directories(inner);
   std::ofstream((root / "manifest.json").string()) << R"({"format": "duskmap-synthetic"})";

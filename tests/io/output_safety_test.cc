@@ -13,18 +13,13 @@
 #include <gtest/gtest.h>
 
 #include "slam/core/check.h"
+#include "tests/testing/fixture_cache.h"
 
 namespace duskmap {
 namespace {
 namespace fs = std::filesystem;
 
-fs::path TempRoot(const std::string& name) {
-  const fs::path root =
-      fs::temp_directory_path() / ("duskmap_safety_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(root);
-  fs::create_directories(root);
-  return root;
-}
+using testing::ProcessTempDir;
 
 std::string Contents(const fs::path& path) {
   std::ifstream in(path);
@@ -43,7 +38,7 @@ std::string ErrorOf(const std::function<void()>& f) {
 }
 
 TEST(OutputSafety, SameOrInsideResolvesDotsAndLinks) {
-  const fs::path root = TempRoot("inside");
+  const fs::path root = ProcessTempDir("safety_inside");
   fs::create_directories(root / "data" / "s1");
   fs::create_symlink(root / "data", root / "link");
   EXPECT_TRUE(IsSameOrInside(root / "data", root / "data/"));
@@ -54,7 +49,7 @@ TEST(OutputSafety, SameOrInsideResolvesDotsAndLinks) {
 }
 
 TEST(OutputSafety, OutputMayNotBeOrLieInsideAnInput) {
-  const fs::path root = TempRoot("inputs");
+  const fs::path root = ProcessTempDir("safety_inputs");
   fs::create_directories(root / "dataset");
   const std::string map = (root / "m.db").string();
   std::ofstream(map) << "map";
@@ -75,7 +70,7 @@ TEST(OutputSafety, OutputMayNotBeOrLieInsideAnInput) {
 }
 
 TEST(OutputSafety, ReplaceNeedsOverwriteAndOwnership) {
-  const fs::path root = TempRoot("replace");
+  const fs::path root = ProcessTempDir("safety_replace");
   EXPECT_NO_THROW(CheckMayReplace({"--output", (root / "new").string()}, false, OwnedResultsFolder()));
   fs::create_directories(root / "user");
   std::string message =
@@ -100,7 +95,7 @@ TEST(OutputSafety, LabelsStayOneComponent) {
 }
 
 TEST(OutputSafety, SecondProcessCannotLockTheFolder) {
-  const fs::path root = TempRoot("lock");
+  const fs::path root = ProcessTempDir("safety_lock");
   FolderLock lock(root);
   // flock locks belong to the open file description: another process (a
   // child, which opens the file anew) is refused while this one holds it.
@@ -125,13 +120,13 @@ TEST(OutputSafety, SecondProcessCannotLockTheFolder) {
 }
 
 TEST(OutputSafety, LockIsReleasedWithItsOwner) {
-  const fs::path root = TempRoot("relock");
+  const fs::path root = ProcessTempDir("safety_relock");
   { FolderLock first(root); }
   EXPECT_NO_THROW(FolderLock second(root));
 }
 
 TEST(OutputSafety, AtomicWriteReplacesWholeOrNothing) {
-  const fs::path root = TempRoot("atomic");
+  const fs::path root = ProcessTempDir("safety_atomic");
   const std::string path = (root / "records.jsonl").string();
   std::ofstream(path) << "old\n";
   WriteFileAtomically(path, [](std::ostream& out) { out << "new\n"; });
@@ -147,7 +142,7 @@ TEST(OutputSafety, AtomicWriteReplacesWholeOrNothing) {
 }
 
 TEST(OutputSafety, WriteCutShortLeavesTheOldFileAndNoPartialFile) {
-  const fs::path root = TempRoot("cut");
+  const fs::path root = ProcessTempDir("safety_cut");
   const std::string path = (root / "records.jsonl").string();
   std::ofstream(path) << "old\n";
   // A file-size limit makes write() fail part way, as a full disk does.

@@ -12,17 +12,13 @@
 #include "slam/core/check.h"
 #include "slam/io/synthetic_dataset.h"
 #include "slam/io/tum_writer.h"
+#include "tests/testing/fixture_cache.h"
 
 namespace duskmap {
 namespace {
 namespace fs = std::filesystem;
 
-fs::path TempRoot(const std::string& name) {
-  const fs::path root = fs::temp_directory_path() / ("duskmap_tum_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(root);
-  fs::create_directories(root);
-  return root;
-}
+using testing::ProcessTempDir;
 
 std::vector<RgbdFrame> MakeFrames(int count) {
   std::vector<RgbdFrame> frames;
@@ -111,7 +107,7 @@ std::vector<double> Timestamps(SessionReader& session) {
 
 TEST(TumDataset, WriteReadRoundTrip) {
   const std::vector<RgbdFrame> frames = MakeFrames(4);
-  const std::string path = WriteSession(TempRoot("round") / "seq", frames);
+  const std::string path = WriteSession(fs::path(ProcessTempDir("tum_round")) / "seq", frames);
   std::unique_ptr<DatasetReader> dataset = OpenTumDataset(path);
   ASSERT_EQ(dataset->Sessions().size(), 1u);
   EXPECT_EQ(dataset->Sessions()[0].name, "seq");
@@ -135,7 +131,7 @@ TEST(TumDataset, WriteReadRoundTrip) {
 }
 
 TEST(TumDataset, MissingImageNamesTheFile) {
-  const std::string path = WriteSession(TempRoot("missing") / "seq", MakeFrames(3));
+  const std::string path = WriteSession(fs::path(ProcessTempDir("tum_missing")) / "seq", MakeFrames(3));
   const std::string victim = path + "/rgb/" + TumStamp(60002.0) + ".png";
   fs::remove(victim);
   try {
@@ -147,7 +143,7 @@ TEST(TumDataset, MissingImageNamesTheFile) {
 }
 
 TEST(TumDataset, TruncatedImageThrowsWhenRead) {
-  const std::string path = WriteSession(TempRoot("truncated") / "seq", MakeFrames(3));
+  const std::string path = WriteSession(fs::path(ProcessTempDir("tum_truncated")) / "seq", MakeFrames(3));
   const std::string victim = path + "/depth/" + TumStamp(60001.0) + ".png";
   fs::resize_file(victim, 40);
   std::unique_ptr<SessionReader> session = OpenTumDataset(path)->OpenSession("seq");
@@ -161,13 +157,13 @@ TEST(TumDataset, TruncatedImageThrowsWhenRead) {
 }
 
 TEST(TumDataset, TruncatedIndexLineThrows) {
-  const std::string path = WriteSession(TempRoot("index") / "seq", MakeFrames(2));
+  const std::string path = WriteSession(fs::path(ProcessTempDir("tum_index")) / "seq", MakeFrames(2));
   std::ofstream(path + "/rgb.txt", std::ios::app) << "60005.0\n";
   EXPECT_THROW(OpenTumDataset(path), InputError);
 }
 
 TEST(TumDataset, RealTumFolderUsesPublishedIntrinsicsAndAssociates) {
-  const fs::path folder = TempRoot("fr1") / "rgbd_dataset_freiburg1_xyz";
+  const fs::path folder = fs::path(ProcessTempDir("tum_fr1")) / "rgbd_dataset_freiburg1_xyz";
   fs::create_directories(folder / "rgb");
   fs::create_directories(folder / "depth");
   cv::imwrite((folder / "rgb/1.000000.png").string(), cv::Mat(480, 640, CV_8UC3, cv::Scalar(1, 2, 3)));
@@ -192,14 +188,14 @@ TEST(TumDataset, RealTumFolderUsesPublishedIntrinsicsAndAssociates) {
 // The writer's index files: two comment lines, then one line per frame
 // (frame k on line k + 3), rgb and depth with the same timestamps.
 TEST(TumDataset, GeneratedIndexFilesAreStrictlyIncreasingAndOneToOne) {
-  const std::string path = WriteSession(TempRoot("strict_ok") / "seq", MakeFrames(5));
+  const std::string path = WriteSession(fs::path(ProcessTempDir("tum_strict_ok")) / "seq", MakeFrames(5));
   EXPECT_EQ(ReadLines(path + "/rgb.txt")[2], IndexLine("rgb", 60000.0));
   EXPECT_EQ(ReadLines(path + "/depth.txt")[6], IndexLine("depth", 60004.0));
   EXPECT_EQ(OpenTumDataset(path)->Sessions()[0].num_frames, 5);
 }
 
 TEST(TumDataset, OutOfOrderLineNamesFileAndLine) {
-  const std::string path = WriteSession(TempRoot("unordered") / "seq", MakeFrames(4));
+  const std::string path = WriteSession(fs::path(ProcessTempDir("tum_unordered")) / "seq", MakeFrames(4));
   std::vector<std::string> lines = ReadLines(path + "/rgb.txt");
   std::swap(lines[3], lines[4]);  // lines 4 and 5: 60002 before 60001
   WriteLines(path + "/rgb.txt", lines);
@@ -213,7 +209,7 @@ TEST(TumDataset, OutOfOrderLineNamesFileAndLine) {
 }
 
 TEST(TumDataset, OutOfOrderDepthLineNamesDepthTxt) {
-  const std::string path = WriteSession(TempRoot("unordered_depth") / "seq", MakeFrames(3));
+  const std::string path = WriteSession(fs::path(ProcessTempDir("tum_unordered_depth")) / "seq", MakeFrames(3));
   std::vector<std::string> lines = ReadLines(path + "/depth.txt");
   std::swap(lines[2], lines[4]);
   WriteLines(path + "/depth.txt", lines);
@@ -227,7 +223,7 @@ TEST(TumDataset, OutOfOrderDepthLineNamesDepthTxt) {
 }
 
 TEST(TumDataset, AllowUnorderedHintEndsOrderingErrors) {
-  const std::string path = WriteSession(TempRoot("hint") / "seq", MakeFrames(3));
+  const std::string path = WriteSession(fs::path(ProcessTempDir("tum_hint")) / "seq", MakeFrames(3));
   std::vector<std::string> lines = ReadLines(path + "/rgb.txt");
   std::swap(lines[2], lines[4]);
   WriteLines(path + "/rgb.txt", lines);
@@ -242,7 +238,7 @@ TEST(TumDataset, AllowUnorderedHintEndsOrderingErrors) {
 }
 
 TEST(TumDataset, DuplicateLineNamesBothLines) {
-  const std::string path = WriteSession(TempRoot("duplicate") / "seq", MakeFrames(3));
+  const std::string path = WriteSession(fs::path(ProcessTempDir("tum_duplicate")) / "seq", MakeFrames(3));
   std::vector<std::string> lines = ReadLines(path + "/rgb.txt");
   lines.push_back(lines[3]);  // line 6 repeats line 4 (60001)
   WriteLines(path + "/rgb.txt", lines);
@@ -261,7 +257,7 @@ TEST(TumDataset, DuplicateLineNamesBothLines) {
 }
 
 TEST(TumDataset, RgbLineWithoutDepthNamesTheRgbLine) {
-  const std::string path = WriteSession(TempRoot("no_depth") / "seq", MakeFrames(4));
+  const std::string path = WriteSession(fs::path(ProcessTempDir("tum_no_depth")) / "seq", MakeFrames(4));
   std::vector<std::string> lines = ReadLines(path + "/depth.txt");
   lines.erase(lines.begin() + 4);  // depth 60002
   WriteLines(path + "/depth.txt", lines);
@@ -274,7 +270,7 @@ TEST(TumDataset, RgbLineWithoutDepthNamesTheRgbLine) {
 }
 
 TEST(TumDataset, DepthImageNearestToTwoRgbLinesIsAnError) {
-  const std::string path = WriteSession(TempRoot("depth_twice") / "seq", MakeFrames(3));
+  const std::string path = WriteSession(fs::path(ProcessTempDir("tum_depth_twice")) / "seq", MakeFrames(3));
   std::vector<std::string> lines = ReadLines(path + "/rgb.txt");
   // rgb 60000.010 (line 4) has depth 60000 (depth.txt:3) as its nearest, as rgb 60000 has.
   lines.insert(lines.begin() + 3, "60000.010000 rgb/" + TumStamp(60000.0) + ".png");
@@ -287,7 +283,7 @@ TEST(TumDataset, DepthImageNearestToTwoRgbLinesIsAnError) {
 }
 
 TEST(TumDataset, DepthLineWithoutRgbNamesTheDepthLine) {
-  const std::string path = WriteSession(TempRoot("no_rgb") / "seq", MakeFrames(4));
+  const std::string path = WriteSession(fs::path(ProcessTempDir("tum_no_rgb")) / "seq", MakeFrames(4));
   std::vector<std::string> lines = ReadLines(path + "/rgb.txt");
   lines.erase(lines.begin() + 3);  // rgb 60001: its frame would vanish unnoticed
   WriteLines(path + "/rgb.txt", lines);
@@ -298,7 +294,7 @@ TEST(TumDataset, DepthLineWithoutRgbNamesTheDepthLine) {
 }
 
 TEST(TumDataset, ImageOverThePixelLimitIsRefusedBeforeDecoding) {
-  const std::string path = WriteSession(TempRoot("huge") / "seq", MakeFrames(2));
+  const std::string path = WriteSession(fs::path(ProcessTempDir("tum_huge")) / "seq", MakeFrames(2));
   const std::string victim = path + "/rgb/" + TumStamp(60001.0) + ".png";
   {
     // A PNG signature and an IHDR chunk declaring 20000x20000 8-bit RGB, and
@@ -317,7 +313,7 @@ TEST(TumDataset, ImageOverThePixelLimitIsRefusedBeforeDecoding) {
 }
 
 TEST(TumDataset, SymlinkLoopsAreInputErrorsNamingThePath) {
-  const std::string path = WriteSession(TempRoot("loop") / "seq", MakeFrames(2));
+  const std::string path = WriteSession(fs::path(ProcessTempDir("tum_loop")) / "seq", MakeFrames(2));
   const std::string loop_problem = ": Too many levels of symbolic links";
   // A listed image.
   const std::string image = path + "/depth/" + TumStamp(60001.0) + ".png";
@@ -325,19 +321,19 @@ TEST(TumDataset, SymlinkLoopsAreInputErrorsNamingThePath) {
   fs::create_symlink(image, image);
   EXPECT_EQ(ErrorOf([&] { OpenTumDataset(path); }), image + loop_problem);
   // An optional file (ground truth), which is otherwise tested for existence.
-  const std::string other = WriteSession(TempRoot("loop_truth") / "seq", MakeFrames(2));
+  const std::string other = WriteSession(fs::path(ProcessTempDir("tum_loop_truth")) / "seq", MakeFrames(2));
   const std::string truth = other + "/groundtruth.txt";
   fs::remove(truth);
   fs::create_symlink(truth, truth);
   EXPECT_EQ(ErrorOf([&] { OpenTumDataset(other); }), truth + loop_problem);
   // The sequence folder itself.
-  const std::string folder = (TempRoot("loop_folder") / "seq").string();
+  const std::string folder = (fs::path(ProcessTempDir("tum_loop_folder")) / "seq").string();
   fs::create_symlink(folder, folder);
   EXPECT_EQ(ErrorOf([&] { OpenTumDataset(folder); }), folder + loop_problem);
 }
 
 TEST(TumCalibrationFile, DepthScaleOutsideOneToOneHundredThousandIsRefused) {
-  const fs::path root = TempRoot("calibration_scale");
+  const fs::path root = ProcessTempDir("tum_calibration_scale");
   fs::create_directories(root);
   const std::string path = (root / kCalibrationFileName).string();
   TumCalibration c = SmallCalibration();
@@ -357,7 +353,7 @@ TEST(TumCalibrationFile, DepthScaleOutsideOneToOneHundredThousandIsRefused) {
 }
 
 TEST(SyntheticDataset, ManifestCreditsItsAssetsOnlyWhenItHasAny) {
-  const fs::path root = TempRoot("synthetic_assets");
+  const fs::path root = ProcessTempDir("tum_synthetic_assets");
   fs::create_directories(root);
   const ManifestSession session{"1", "1", "16:46", "mapping"};
   WriteManifest(root.string(), {{session}, {}});
@@ -375,7 +371,7 @@ TEST(SyntheticDataset, ManifestCreditsItsAssetsOnlyWhenItHasAny) {
 }
 
 TEST(SyntheticDataset, ManifestListsSessions) {
-  const fs::path root = TempRoot("synthetic");
+  const fs::path root = ProcessTempDir("tum_synthetic");
   WriteSession(root / "1", MakeFrames(2));
   WriteSession(root / "A", MakeFrames(3));
   WriteManifest(root.string(), {{{"1", "1", "16:46", "mapping"}, {"A", "A", "16:51", "localization"}}, {}});
@@ -397,7 +393,7 @@ TEST(SyntheticDataset, SessionFolderOutsideTheDatasetIsRefused) {
   EXPECT_FALSE(IsFolderInsideDataset("../x"));
   EXPECT_FALSE(IsFolderInsideDataset("a/../../x"));
   EXPECT_FALSE(IsFolderInsideDataset("/tmp/x"));
-  const fs::path root = TempRoot("synthetic_escape");
+  const fs::path root = ProcessTempDir("tum_synthetic_escape");
   WriteSession(root / "outside", MakeFrames(2));
   const fs::path dataset = root / "dataset";
   fs::create_directories(dataset);
@@ -409,14 +405,14 @@ TEST(SyntheticDataset, SessionFolderOutsideTheDatasetIsRefused) {
 }
 
 TEST(SyntheticDataset, MissingSessionFolderThrows) {
-  const fs::path root = TempRoot("synthetic_missing");
+  const fs::path root = ProcessTempDir("tum_synthetic_missing");
   WriteManifest(root.string(), {{{"1", "1", "16:46", "mapping"}}, {}});
   EXPECT_THROW(OpenSyntheticDataset(root.string()), InputError);
   EXPECT_THROW(OpenSyntheticDataset((root / "nowhere").string()), InputError);
 }
 
 TEST(SyntheticDataset, SessionIndexFilesAreReadStrictlyUnlessAllowed) {
-  const fs::path root = TempRoot("synthetic_strict");
+  const fs::path root = ProcessTempDir("tum_synthetic_strict");
   WriteSession(root / "1", MakeFrames(3));
   WriteManifest(root.string(), {{{"1", "1", "16:46", "mapping"}}, {}});
   const std::string rgb = (root / "1" / "rgb.txt").string();
@@ -429,7 +425,7 @@ TEST(SyntheticDataset, SessionIndexFilesAreReadStrictlyUnlessAllowed) {
 }
 
 TEST(SyntheticDataset, ManifestSymlinkLoopIsAnInputError) {
-  const fs::path root = TempRoot("synthetic_loop");
+  const fs::path root = ProcessTempDir("tum_synthetic_loop");
   const std::string manifest = (root / kManifestFileName).string();
   fs::create_symlink(manifest, manifest);
   EXPECT_EQ(ErrorOf([&] { OpenSyntheticDataset(root.string()); }),

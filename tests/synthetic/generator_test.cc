@@ -1,7 +1,5 @@
 #include "slam/synthetic/generator.h"
 
-#include <unistd.h>
-
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -12,17 +10,13 @@
 #include "slam/core/check.h"
 #include "slam/io/synthetic_dataset.h"
 #include "tests/synthetic/small_config.h"
+#include "tests/testing/fixture_cache.h"
 
 namespace duskmap {
 namespace {
 namespace fs = std::filesystem;
 
-fs::path TempRoot(const std::string& name) {
-  const fs::path root = fs::temp_directory_path() / ("duskmap_gen_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(root);
-  fs::create_directories(root);
-  return root;
-}
+using testing::ProcessTempDir;
 
 std::string ReadBytes(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -40,7 +34,7 @@ std::map<std::string, std::string> AllFiles(const fs::path& root) {
 }
 
 TEST(GenerateDataset, SameConfigGivesByteIdenticalOutputForAnyThreadCount) {
-  const fs::path root = TempRoot("determinism");
+  const fs::path root = ProcessTempDir("gen_determinism");
   GeneratorConfig config = testing::SmallConfig(3);
   GenerateOptions options;
   options.output_path = (root / "a").string();
@@ -58,7 +52,7 @@ TEST(GenerateDataset, SameConfigGivesByteIdenticalOutputForAnyThreadCount) {
 }
 
 TEST(GenerateDataset, WritesAReadableTumLayoutWithGroundTruth) {
-  const fs::path root = TempRoot("layout");
+  const fs::path root = ProcessTempDir("gen_layout");
   GenerateOptions options;
   options.output_path = (root / "data").string();
   const GenerateSummary summary = GenerateDataset(testing::SmallConfig(4), options);
@@ -86,7 +80,7 @@ TEST(GenerateDataset, WritesAReadableTumLayoutWithGroundTruth) {
 }
 
 TEST(GenerateDataset, NightIsDarkerAndNoisierThanDay) {
-  const fs::path root = TempRoot("day_night");
+  const fs::path root = ProcessTempDir("gen_day_night");
   GenerateOptions options;
   options.output_path = (root / "data").string();
   const GenerateSummary summary = GenerateDataset(testing::SmallConfig(2), options);
@@ -95,7 +89,7 @@ TEST(GenerateDataset, NightIsDarkerAndNoisierThanDay) {
 }
 
 TEST(GenerateDataset, ExistingDatasetNeedsOverwrite) {
-  const fs::path root = TempRoot("exists");
+  const fs::path root = ProcessTempDir("gen_exists");
   GenerateOptions options;
   options.output_path = (root / "data").string();
   fs::create_directories(options.output_path);
@@ -113,7 +107,7 @@ TEST(GenerateDataset, ExistingDatasetNeedsOverwrite) {
 }
 
 TEST(GenerateDataset, FailureLeavesNoHalfWrittenDataset) {
-  const fs::path root = TempRoot("failure");
+  const fs::path root = ProcessTempDir("gen_failure");
   GeneratorConfig config = testing::SmallConfig(1);
   config.scene.textures_dir = (root / "no_such_folder").string();  // fails while building the scene
   GenerateOptions options;
@@ -123,7 +117,7 @@ TEST(GenerateDataset, FailureLeavesNoHalfWrittenDataset) {
 }
 
 TEST(GenerateDataset, UserTexturesArePutOnPictures) {
-  const fs::path root = TempRoot("textures");
+  const fs::path root = ProcessTempDir("gen_textures");
   fs::create_directories(root / "tex");
   cv::Mat image(64, 64, CV_8UC3, cv::Scalar(0, 0, 255));
   cv::imwrite((root / "tex" / "red.png").string(), image);

@@ -18,10 +18,11 @@ struct CliResult {
   std::string output;  // stdout and stderr
 };
 
-// `duskmap <args> 2>&1`; exit_code -1 when it did not exit normally.
-inline CliResult RunDuskmap(const std::string& args) {
+// `<prefix>duskmap <args> 2>&1` through the shell (`prefix`: a `cd`, a
+// ulimit); exit_code -1 when it did not exit normally.
+inline CliResult RunDuskmap(const std::string& args, const std::string& prefix = "") {
   CliResult result;
-  FILE* pipe = ::popen((std::string(DUSKMAP_EXE) + " " + args + " 2>&1").c_str(), "r");
+  FILE* pipe = ::popen((prefix + std::string(DUSKMAP_EXE) + " " + args + " 2>&1").c_str(), "r");
   if (!pipe) return result;
   std::array<char, 4096> buffer;
   while (size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
