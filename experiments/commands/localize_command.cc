@@ -221,6 +221,8 @@ RunFn SetupLocalize(CLI::App& command) {
       }
       summaries.push_back(std::move(summary));
     }
+    // stdout leaves out the one-entry-per-frame list (the --summary file has it).
+    for (nlohmann::json& summary : summaries) summary.erase("matched_session_per_frame");
     std::cout << (several ? summaries : summaries[0]).dump(2) << '\n';
     return 0;
   };

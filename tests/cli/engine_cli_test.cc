@@ -64,6 +64,9 @@ TEST_F(EngineCli, MapThenLocalizeWritesOutputs) {
   EXPECT_TRUE(summary["has_ground_truth"].get<bool>());
   EXPECT_EQ(summary["num_wrong"], 0);
   EXPECT_EQ(summary["matched_session_per_frame"].size(), 8u);
+  // stdout has the summary without the per-frame list.
+  EXPECT_NE(localize.output.find("\"num_frames\": 8"), std::string::npos) << localize.output;
+  EXPECT_EQ(localize.output.find("matched_session_per_frame"), std::string::npos) << localize.output;
   EXPECT_GT(summary["memory_bytes"]["filter"].get<double>(), 0.0);
   EXPECT_GT(summary["memory_bytes"]["words_index"].get<double>(), 0.0);
   EXPECT_GT(summary["timings"]["total"]["max_ms"].get<double>(), 0.0);
