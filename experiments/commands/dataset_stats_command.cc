@@ -58,6 +58,10 @@ RunFn SetupStats(CLI::App& command) {
   command.add_option("--sift-contrast", args->options.sift_contrast_threshold,
                      "SIFT contrast threshold (OpenCV's default; the paper's experiments use 0.02)")
       ->capture_default_str();
+  command.add_option("--max-error-px", args->options.max_reprojection_px,
+                     "a match is correct when ground truth reprojects its keypoint within this many pixels")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   command.add_option("--min-correct", args->options.min_correct_matches,
                      "correct matches a frame pair needs to count as found")
       ->capture_default_str();

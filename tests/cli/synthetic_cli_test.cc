@@ -90,6 +90,13 @@ TEST(DatasetStatsCli, PrintsTheMatricesAndRejectsATruncatedSequence) {
   ASSERT_EQ(ok.exit_code, 0) << ok.output;
   EXPECT_NE(ok.output.find("SIFT median inlier ratio"), std::string::npos);
   EXPECT_NE(ok.output.find("ORB median inlier ratio"), std::string::npos);
+  // The ground-truth threshold is an option (3 px: issue 18's day/night statistic); 0 is refused.
+  EXPECT_EQ(RunDuskmap("dataset-stats --dataset " + out + " --frame-step 4 --max-features 300 --max-error-px 3")
+                .exit_code,
+            0);
+  const Result zero = RunDuskmap("dataset-stats --dataset " + out + " --max-error-px 0");
+  EXPECT_NE(zero.exit_code, 0);
+  EXPECT_NE(zero.output.find("--max-error-px"), std::string::npos) << zero.output;
   // Truncate the sequence: remove one listed image.
   fs::path victim;
   for (const auto& entry : fs::directory_iterator(out + "/F/rgb")) victim = entry.path();
