@@ -46,6 +46,12 @@ void CameraModelOptions::Check() const {
   SLAM_THROW_IF_NOT(ConfigError, tone_contrast >= 0 && tone_contrast <= 0.5) << "camera.tone_contrast must be in [0, 0.5]";
   SLAM_THROW_IF_NOT(ConfigError, motion_blur_scale >= 0 && motion_blur_scale <= 4)
       << "camera.motion_blur_scale must be in [0, 4], got " << motion_blur_scale;
+  SLAM_THROW_IF_NOT(ConfigError, sharpen_amount >= 0 && sharpen_amount <= 3)
+      << "camera.sharpen_amount must be in [0, 3], got " << sharpen_amount;
+  SLAM_THROW_IF_NOT(ConfigError, sharpen_sigma_px > 0 && sharpen_sigma_px <= 5)
+      << "camera.sharpen_sigma_px must be in (0, 5], got " << sharpen_sigma_px;
+  SLAM_THROW_IF_NOT(ConfigError, sharpen_threshold_levels >= 0 && sharpen_threshold_levels <= 64)
+      << "camera.sharpen_threshold_levels must be in [0, 64], got " << sharpen_threshold_levels;
 }
 
 CameraModel::CameraModel(const CameraModelOptions& options, uint64_t seed)
@@ -152,8 +158,35 @@ cv::Mat CameraModel::Capture(const cv::Mat& radiance, const cv::Vec2d& image_vel
       }
     }
   }
+  if (options_.sharpen_amount > 0.0) Sharpen(&out);
   Meter(radiance);
   return out;
+}
+
+void CameraModel::Sharpen(cv::Mat* bgr) {
+  luma_.create(bgr->size(), CV_32F);
+  for (int r = 0; r < bgr->rows; ++r) {
+    const uint8_t* in = bgr->ptr<uint8_t>(r);
+    float* y = luma_.ptr<float>(r);
+    for (int c = 0; c < bgr->cols; ++c) {
+      y[c] = 0.114f * in[3 * c] + 0.587f * in[3 * c + 1] + 0.299f * in[3 * c + 2];
+    }
+  }
+  cv::GaussianBlur(luma_, luma_blurred_, cv::Size(0, 0), options_.sharpen_sigma_px, 0.0, cv::BORDER_REFLECT);
+  const float amount = static_cast<float>(options_.sharpen_amount);
+  const float threshold = static_cast<float>(options_.sharpen_threshold_levels);
+  for (int r = 0; r < bgr->rows; ++r) {
+    uint8_t* io = bgr->ptr<uint8_t>(r);
+    const float* y = luma_.ptr<float>(r);
+    const float* yb = luma_blurred_.ptr<float>(r);
+    for (int c = 0; c < bgr->cols; ++c) {
+      const float detail = y[c] - yb[c];
+      const float cored = std::copysign(std::max(std::abs(detail) - threshold, 0.0f), detail);
+      // The same offset on the three channels changes luma only, not hue.
+      const float delta = amount * cored;
+      for (int k = 0; k < 3; ++k) io[3 * c + k] = cv::saturate_cast<uint8_t>(io[3 * c + k] + delta);
+    }
+  }
 }
 
 }  // namespace duskmap

@@ -3,7 +3,9 @@
 // auto-exposure with lag (metering the mean brightness of the previous
 // frame), grey-world auto white balance with lag and partial strength, optics
 // blur, shot and read noise that grow with analogue gain, a tone curve with
-// clipping and 8-bit quantisation. Seeded: the same inputs give the same bytes.
+// clipping and 8-bit quantisation, then the image processor's sharpening
+// (an unsharp mask of the luma with a noise threshold, as phone cameras
+// apply). Seeded: the same inputs give the same bytes.
 #pragma once
 
 #include <cstdint>
@@ -34,6 +36,12 @@ struct CameraModelOptions {
   double gamma = 2.2;             // display gamma of the tone curve
   double tone_contrast = 0.12;    // S-curve strength added to the gamma curve, [0, 0.5]
   double motion_blur_scale = 0.0; // motion blur = image velocity x exposure time x this; 0 = off
+  // Sharpening of the 8-bit output: luma += amount x coring(luma - Gaussian(luma, sigma)),
+  // where coring shrinks each detail value towards 0 by threshold grey levels (noise below
+  // it is not amplified). 0 = off.
+  double sharpen_amount = 0.0;          // [0, 3]
+  double sharpen_sigma_px = 1.0;        // (0, 5], pixels
+  double sharpen_threshold_levels = 0.0;  // [0, 64], grey levels of 255
 
   PinholeCamera Intrinsics() const;
   void Check() const;
@@ -68,6 +76,7 @@ class CameraModel {
  private:
   void Meter(const cv::Mat& radiance_bgr);
   void SetExposure(double exposure);
+  void Sharpen(cv::Mat* bgr);
 
   CameraModelOptions options_;
   CameraState state_;
@@ -76,6 +85,7 @@ class CameraModel {
   cv::Mat blurred_;                // scratch: blurred radiance, reused across frames
   cv::Mat smeared_;                // scratch: motion-blurred radiance
   std::vector<float> noise_row_;   // scratch: one row of normal samples
+  cv::Mat luma_, luma_blurred_;    // scratch: sharpening
 };
 
 }  // namespace duskmap

@@ -90,6 +90,9 @@ void ReadCamera(JsonFields f, CameraModelOptions* o) {
   f.Read("gamma", &o->gamma);
   f.Read("tone_contrast", &o->tone_contrast);
   f.Read("motion_blur_scale", &o->motion_blur_scale);
+  f.Read("sharpen_amount", &o->sharpen_amount);
+  f.Read("sharpen_sigma_px", &o->sharpen_sigma_px);
+  f.Read("sharpen_threshold_levels", &o->sharpen_threshold_levels);
   f.RejectUnknown();
 }
 

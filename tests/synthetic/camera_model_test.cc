@@ -113,6 +113,51 @@ TEST(CameraModel, TurningSmearsLongExposuresButNotShortOnes) {
   EXPECT_NEAR(day_turning, day_still, 0.05 * day_still);
 }
 
+TEST(CameraModel, SharpeningSteepensEdgesAndItsThresholdSparesFlatNoise) {
+  // Vertical stripes 8 px wide, no sensor noise: the unsharp mask overshoots at each edge.
+  CameraModelOptions clean = SmallOptions();
+  clean.photons_at_white = 1e9;
+  clean.read_noise = 0.0;
+  cv::Mat stripes(120, 160, CV_32FC3);
+  for (int c = 0; c < 160; ++c) stripes.col(c).setTo(cv::Scalar::all((c / 8) % 2 ? 60.0 : 20.0));
+  CameraModelOptions sharp = clean;
+  sharp.sharpen_amount = 1.0;
+  CameraModel plain_camera(clean, 1), sharp_camera(sharp, 1);
+  plain_camera.Settle(stripes, 20);
+  sharp_camera.Settle(stripes, 20);
+  const cv::Mat plain = plain_camera.Capture(stripes), sharpened = sharp_camera.Capture(stripes);
+  cv::Mat plain_green, sharp_green;
+  cv::extractChannel(plain, plain_green, 1);
+  cv::extractChannel(sharpened, sharp_green, 1);
+  double plain_min, plain_max, sharp_min, sharp_max;
+  cv::minMaxLoc(plain_green, &plain_min, &plain_max);
+  cv::minMaxLoc(sharp_green, &sharp_min, &sharp_max);
+  EXPECT_GE(sharp_max, plain_max + 2);  // overshoot on the bright side of each edge
+  EXPECT_LE(sharp_min, plain_min - 4);  // and undershoot on the dark side
+  EXPECT_GT(HorizontalDetail(sharpened), 1.3 * HorizontalDetail(plain));
+  // Grey stays grey: the same offset on every channel.
+  const cv::Vec3b px = sharpened.at<cv::Vec3b>(60, 8);
+  EXPECT_EQ(px[0], px[1]);
+  EXPECT_EQ(px[1], px[2]);
+
+  // A flat dim scene at high gain (noise std about 15 grey levels): sharpening amplifies the
+  // noise, unless it lies under the threshold.
+  const cv::Mat flat(120, 160, CV_32FC3, cv::Scalar(2, 2, 2));
+  CameraModelOptions noisy = SmallOptions();
+  CameraModelOptions noisy_sharp = noisy;
+  noisy_sharp.sharpen_amount = 1.0;
+  CameraModelOptions noisy_cored = noisy_sharp;
+  noisy_cored.sharpen_threshold_levels = 32.0;
+  CameraModel a(noisy, 5), b(noisy_sharp, 5), c(noisy_cored, 5);
+  for (CameraModel* camera : {&a, &b, &c}) camera->Settle(flat, 20);
+  cv::Scalar mean, std_plain, std_sharp, std_cored;
+  cv::meanStdDev(a.Capture(flat), mean, std_plain);
+  cv::meanStdDev(b.Capture(flat), mean, std_sharp);
+  cv::meanStdDev(c.Capture(flat), mean, std_cored);
+  EXPECT_GT(std_sharp[1], 1.3 * std_plain[1]);
+  EXPECT_LT(std_cored[1], 1.1 * std_plain[1]);
+}
+
 TEST(CameraModelOptions, CheckNamesTheField) {
   CameraModelOptions o;
   o.ae_speed = 0.0;
