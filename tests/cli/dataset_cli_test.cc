@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "tests/testing/fixture_cache.h"
+#include "tests/testing/temp_dir.h"
 #include "tests/testing/run_duskmap.h"
 
 namespace {

@@ -17,7 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "slam/experiment/job_results_json.h"
-#include "tests/testing/fixture_cache.h"
+#include "tests/testing/temp_dir.h"
 #include "tests/testing/run_duskmap.h"
 
 namespace {

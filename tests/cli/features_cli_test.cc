@@ -19,7 +19,7 @@
 
 #include "tests/features/onnx_test_models.h"
 #include "tests/features/two_plane_pair.h"
-#include "tests/testing/fixture_cache.h"
+#include "tests/testing/temp_dir.h"
 #include "tests/testing/run_duskmap.h"
 
 namespace {

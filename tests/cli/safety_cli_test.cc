@@ -15,7 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "slam/io/output_safety.h"
-#include "tests/testing/fixture_cache.h"
+#include "tests/testing/temp_dir.h"
 #include "tests/testing/run_duskmap.h"
 
 namespace {

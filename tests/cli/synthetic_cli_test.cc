@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "tests/testing/fixture_cache.h"
+#include "tests/testing/temp_dir.h"
 #include "tests/testing/run_duskmap.h"
 
 namespace {

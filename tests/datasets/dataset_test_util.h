@@ -16,6 +16,7 @@
 #include "slam/core/check.h"
 #include "tests/testing/error_of.h"
 #include "slam/io/dataset_reader.h"
+#include "tests/testing/temp_dir.h"
 
 namespace duskmap::testing {
 
@@ -32,15 +33,10 @@ inline std::string SharedRtabmapDir() {
   if (dir.empty()) GTEST_SKIP() << "shared RTAB-Map fixtures not found under "         \
                                 << DUSKMAP_SHARED_DIR << "/data/rtabmap; skipping"
 
-// A fresh empty folder under the system temp dir, unique to the current test.
+// A fresh empty folder under the process's temporary root, named after the current test.
 inline std::string MakeTempDir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::temp_directory_path() /
-                       ("duskmap_datasets_" + std::string(info->test_suite_name()) + "_" +
-                        info->name());
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir.string();
+  return ProcessTempDir("datasets_" + std::string(info->test_suite_name()) + "_" + info->name());
 }
 
 // Copies a file or folder, making the copy writable.

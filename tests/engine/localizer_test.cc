@@ -15,7 +15,7 @@
 #include "slam/map/map_store.h"
 #include "tests/engine/tiny_dataset.h"
 #include "tests/testing/error_of.h"
-#include "tests/testing/fixture_cache.h"
+#include "tests/testing/temp_dir.h"
 
 namespace duskmap {
 namespace {

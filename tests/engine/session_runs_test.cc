@@ -16,6 +16,7 @@
 #include "slam/map/map_store.h"
 #include "slam/map/sqlite_db.h"
 #include "tests/engine/tiny_dataset.h"
+#include "tests/testing/temp_dir.h"
 
 namespace duskmap {
 namespace {

@@ -9,6 +9,7 @@
 #include "slam/io/synthetic_dataset.h"
 #include "slam/synthetic/generator.h"
 #include "tests/testing/fixture_cache.h"
+#include "tests/testing/temp_dir.h"
 
 namespace duskmap::testing {
 

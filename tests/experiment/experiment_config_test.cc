@@ -6,16 +6,15 @@
 #include <gtest/gtest.h>
 
 #include "slam/core/check.h"
+#include "tests/testing/temp_dir.h"
 
 namespace duskmap {
 namespace {
 
 std::string WriteTemp(const std::string& name, const std::string& text) {
-  const auto dir = std::filesystem::temp_directory_path() / "duskmap_experiment_config_test";
-  std::filesystem::create_directories(dir);
-  const auto path = dir / name;
+  const std::string path = testing::ProcessTempPath(name);
   std::ofstream(path) << text;
-  return path.string();
+  return path;
 }
 
 TEST(ReadExperimentOptions, ReadsThePaperMatrix) {

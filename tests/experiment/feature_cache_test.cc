@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "slam/core/check.h"
+#include "tests/testing/temp_dir.h"
 
 namespace duskmap {
 namespace {
@@ -22,8 +23,7 @@ namespace fs = std::filesystem;
 class FeatureCacheTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    path_ = fs::temp_directory_path() /
-            ("duskmap_feature_cache_" + std::to_string(::getpid()) + ".bin");
+    path_ = testing::ProcessTempPath("feature_cache.bin");
   }
   void TearDown() override { fs::remove(path_); }
 

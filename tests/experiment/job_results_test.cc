@@ -9,7 +9,7 @@
 
 #include "slam/experiment/job_results_json.h"
 #include "tests/testing/error_of.h"
-#include "tests/testing/fixture_cache.h"
+#include "tests/testing/temp_dir.h"
 
 namespace duskmap {
 namespace fs = std::filesystem;

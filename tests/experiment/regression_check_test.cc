@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "slam/core/check.h"
+#include "tests/testing/temp_dir.h"
 
 namespace duskmap {
 namespace {
@@ -67,7 +68,7 @@ TEST(RegressionCheck, MissingCellsOrOtherFrameCountsFail) {
 }
 
 TEST(RegressionCheck, ReadsTheReportsCellsCsv) {
-  const fs::path path = fs::temp_directory_path() / ("duskmap_cells_" + std::to_string(::getpid()));
+  const fs::path path = testing::ProcessTempPath("cells.csv");
   std::ofstream(path) << "feature,row,session,job,frames,relocalized_pct,correct_pct,wrong,"
                          "no_candidate_pct,mean_inliers_pct,mean_jump_mm\n"
                          "SI,\"1|2|3\",A,localize/SI/1/A,40,72.5,70,1,5,20,30\n"

@@ -5,7 +5,7 @@
 #include "slam/core/check.h"
 #include "slam/experiment/job_results_json.h"
 #include "slam/experiment/job_runner.h"
-#include "tests/testing/fixture_cache.h"
+#include "tests/testing/temp_dir.h"
 
 namespace duskmap {
 namespace fs = std::filesystem;

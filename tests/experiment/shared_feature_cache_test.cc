@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "slam/experiment/feature_cache.h"
-#include "tests/testing/fixture_cache.h"
+#include "tests/testing/temp_dir.h"
 
 namespace duskmap {
 namespace {

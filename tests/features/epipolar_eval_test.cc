@@ -13,7 +13,7 @@
 #include "slam/features/h5_feature_file.h"
 #include "tests/features/test_images.h"
 #include "tests/testing/error_of.h"
-#include "tests/testing/fixture_cache.h"
+#include "tests/testing/temp_dir.h"
 #include "tests/features/two_plane_pair.h"
 
 namespace duskmap {

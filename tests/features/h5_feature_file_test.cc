@@ -15,15 +15,14 @@
 #include "slam/features/h5_extractor.h"
 #include "tests/features/test_images.h"
 #include "tests/testing/error_of.h"
+#include "tests/testing/temp_dir.h"
 
 namespace duskmap {
 namespace {
 namespace fs = std::filesystem;
 
 std::string TempPath(const std::string& name) {
-  const fs::path root = fs::temp_directory_path() / ("duskmap_h5_test_" + std::to_string(::getpid()));
-  fs::create_directories(root);
-  return (root / name).string();
+  return testing::ProcessTempPath("h5_" + name);
 }
 
 using testing::ErrorOf;

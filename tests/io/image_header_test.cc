@@ -9,16 +9,14 @@
 #include <vector>
 
 #include "slam/core/check.h"
+#include "tests/testing/temp_dir.h"
 
 namespace duskmap {
 namespace {
 namespace fs = std::filesystem;
 
 std::string TempFile(const std::string& name) {
-  const fs::path root =
-      fs::temp_directory_path() / ("duskmap_image_header_" + std::to_string(::getpid()));
-  fs::create_directories(root);
-  return (root / name).string();
+  return testing::ProcessTempPath("image_header_" + name);
 }
 
 std::string WriteBytes(const std::string& name, const std::vector<uint8_t>& bytes) {

@@ -13,7 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "slam/core/check.h"
-#include "tests/testing/fixture_cache.h"
+#include "tests/testing/temp_dir.h"
 
 namespace duskmap {
 namespace {

@@ -6,12 +6,13 @@
 #include <gtest/gtest.h>
 
 #include "slam/core/check.h"
+#include "tests/testing/temp_dir.h"
 
 namespace duskmap {
 namespace {
 
 std::string TempPath(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("duskmap_io_" + name)).string();
+  return testing::ProcessTempPath("io_" + name);
 }
 
 TEST(WriteTrajectory, RoundTripKeepsPoses) {

@@ -12,7 +12,7 @@
 #include "slam/core/check.h"
 #include "slam/io/synthetic_dataset.h"
 #include "slam/io/tum_writer.h"
-#include "tests/testing/fixture_cache.h"
+#include "tests/testing/temp_dir.h"
 
 namespace duskmap {
 namespace {

@@ -13,6 +13,7 @@
 
 #include "slam/core/check.h"
 #include "tests/map/test_map.h"
+#include "tests/testing/temp_dir.h"
 
 namespace duskmap {
 namespace {
@@ -96,11 +97,8 @@ void ExpectMapsEqual(const Map& a, const Map& b) {
 class MapStoreTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("duskmap_map_store_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = testing::ProcessTempDir(std::string("map_store_") +
+                                   ::testing::UnitTest::GetInstance()->current_test_info()->name());
     path_ = (dir_ / "map.db").string();
   }
   void TearDown() override { fs::remove_all(dir_); }

@@ -11,6 +11,7 @@
 #include "slam/vocabulary/synthetic_descriptors.h"
 #include "slam/vocabulary/vocabulary.h"
 #include "tests/map/test_map.h"
+#include "tests/testing/temp_dir.h"
 
 namespace duskmap {
 namespace {
@@ -64,7 +65,7 @@ TEST(MapVocabulary, SurvivesSaveAndLoad) {
   Fixture f = MakeFixture();
   SetMapVocabulary(f.exported, &f.map);
   const std::string path =
-      (std::filesystem::temp_directory_path() / "duskmap_map_vocabulary_test.db").string();
+      testing::ProcessTempPath("map_vocabulary.db");
   SaveMap(f.map, path);
   const Map loaded = LoadMap(path);
   std::remove(path.c_str());
@@ -80,7 +81,7 @@ TEST(MapVocabulary, QuantizedWordsSurviveSaveAndLoad) {
   SetMapVocabulary(f.exported, &f.map);
   EXPECT_EQ(f.map.words().descriptors.cols, 64 + 8);
   const std::string path =
-      (std::filesystem::temp_directory_path() / "duskmap_map_vocabulary_quantized.db").string();
+      testing::ProcessTempPath("map_vocabulary_quantized.db");
   SaveMap(f.map, path);
   const Map loaded = LoadMap(path);
   EXPECT_EQ(loaded.metadata().word_storage, DescriptorStorage::kUint8);

@@ -8,13 +8,13 @@
 #include <gtest/gtest.h>
 
 #include "slam/core/check.h"
+#include "tests/testing/temp_dir.h"
 
 namespace duskmap {
 namespace {
 
 std::string WriteConfig(const std::string& name, const std::string& text) {
-  const std::string path = (std::filesystem::temp_directory_path() /
-                            ("duskmap_cfg_" + name + "_" + std::to_string(::getpid()) + ".json")).string();
+  const std::string path = testing::ProcessTempPath("cfg_" + name + ".json");
   std::ofstream(path) << text;
   return path;
 }

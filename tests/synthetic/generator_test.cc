@@ -10,7 +10,7 @@
 #include "slam/core/check.h"
 #include "slam/io/synthetic_dataset.h"
 #include "tests/synthetic/small_config.h"
-#include "tests/testing/fixture_cache.h"
+#include "tests/testing/temp_dir.h"
 
 namespace duskmap {
 namespace {

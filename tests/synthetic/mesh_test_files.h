@@ -18,6 +18,7 @@
 
 #include "slam/core/check.h"
 #include "slam/synthetic/mesh_files.h"
+#include "tests/testing/temp_dir.h"
 
 namespace duskmap {
 
@@ -52,15 +53,10 @@ inline std::string PngHeader(uint32_t width, uint32_t height) {
   return bytes;
 }
 
-// A scratch folder removed at destruction.
+// A scratch folder under the process's temporary root, removed at destruction.
 class ScratchFolder {
  public:
-  explicit ScratchFolder(const std::string& name)
-      : path_(std::filesystem::temp_directory_path() /
-              ("duskmap_" + name + "_" + std::to_string(::getpid()))) {
-    std::filesystem::remove_all(path_);
-    std::filesystem::create_directories(path_);
-  }
+  explicit ScratchFolder(const std::string& name) : path_(testing::ProcessTempDir(name)) {}
   ~ScratchFolder() { std::filesystem::remove_all(path_); }
   std::string File(const std::string& name) const { return (path_ / name).string(); }
 

@@ -12,6 +12,7 @@
 #include "slam/io/synthetic_dataset.h"
 #include "slam/synthetic/generator.h"
 #include "tests/synthetic/small_config.h"
+#include "tests/testing/temp_dir.h"
 
 namespace duskmap {
 namespace {
@@ -22,8 +23,7 @@ namespace fs = std::filesystem;
 class RealismTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    root_ = new fs::path(fs::temp_directory_path() / ("duskmap_realism_" + std::to_string(::getpid())));
-    fs::remove_all(*root_);
+    root_ = new fs::path(testing::ProcessTempDir("realism"));  // the generator makes data/ in it
     GeneratorConfig config = testing::SmallConfig(4);
     config.camera.width = 320;
     config.camera.height = 240;

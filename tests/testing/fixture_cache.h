@@ -1,6 +1,6 @@
 // Test support shared by the suites (tests/testing/): inputs that are slow to
 // make (a rendered dataset) made once per build and shared by every test
-// process, and per-process temporary folders.
+// process.
 //
 // gtest_discover_tests runs each test in its own process, so a fixture made
 // "once per process" is made once per test. CachedFixture makes it once: the
@@ -10,7 +10,7 @@
 // reuse the folder. The stamp is the modification time of the running test
 // executable, so a rebuilt test binary (after a change to the code that makes
 // the fixture) makes it anew. Fixtures are read-only for the tests: write
-// into ProcessTempDir instead.
+// into ProcessTempDir (temp_dir.h) instead.
 #pragma once
 
 #include <fcntl.h>
@@ -26,17 +26,6 @@
 #include "slam/core/check.h"
 
 namespace duskmap::testing {
-
-// A folder named after `stem` and this process's id in the system's temporary
-// folder, created empty (two test processes never share it).
-inline std::string ProcessTempDir(const std::string& stem) {
-  namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("duskmap_" + stem + "_" + std::to_string(::getpid()));
-  std::error_code ignored;
-  fs::remove_all(dir, ignored);
-  fs::create_directories(dir);
-  return dir.string();
-}
 
 // The folder of fixture `name`, made by `build(folder)` once per build (see
 // above). `build` gets an empty folder that does not exist yet at its final
