@@ -2,7 +2,8 @@
 // Vis/MaxFeatures = 1000: the oxford-leuven reference image resized (or a
 // deterministic textured image when ../shared is absent). OpenCV runs
 // single-threaded so that own and OpenCV-backed extractors compare per core
-// (the reference measured single-threaded too). Report medians:
+// (the reference measured single-threaded too). Extract/kaze/single_pass is
+// KAZE described in its detection pass (kaze.single_pass). Report medians:
 //   build-feat/bench/features_bench --benchmark_repetitions=7
 //       --benchmark_report_aggregates_only=true
 // SuperPoint is timed when DUSKMAP_SUPERPOINT_ONNX names a model file, the
@@ -59,10 +60,12 @@ const cv::Mat& Frame() {
   return kFrame;
 }
 
-void BM_Extract(benchmark::State& state, const std::string& type) {
+// `kaze_single_pass`: KAZE described in its detection pass (kaze.single_pass).
+void BM_Extract(benchmark::State& state, const std::string& type, bool kaze_single_pass) {
   cv::setNumThreads(1);
   FeatureOptions options;
   options.type = type;
+  options.kaze.single_pass = kaze_single_pass;
   if (type == "superpoint") options.superpoint.model_path = std::getenv("DUSKMAP_SUPERPOINT_ONNX");
   if (type == "onnx") {
     const std::string path = std::getenv("DUSKMAP_ONNX_FEATURES");
@@ -166,10 +169,13 @@ const bool kRegistered = [] {
     if (type == "superpoint" && std::getenv("DUSKMAP_SUPERPOINT_ONNX") == nullptr) continue;
     if (type == "onnx" && std::getenv("DUSKMAP_ONNX_FEATURES") == nullptr) continue;
     if (type == "h5") continue;  // imported, not detected: ImportH5 above
-    benchmark::RegisterBenchmark(("Extract/" + type).c_str(), BM_Extract, type)
+    benchmark::RegisterBenchmark(("Extract/" + type).c_str(), BM_Extract, type, false)
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime();
   }
+  benchmark::RegisterBenchmark("Extract/kaze/single_pass", BM_Extract, std::string("kaze"), true)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
   if (std::getenv("DUSKMAP_SUPERGLUE_ONNX") != nullptr) {
     benchmark::RegisterBenchmark("SuperGlueMatch", BM_SuperGlueMatch)
         ->Arg(1000)

@@ -52,6 +52,11 @@ struct KazeOptions {
   double threshold = 0.001;  // detector response threshold
   int octaves = 4;           // octaves
   int octave_layers = 4;     // sublevels per octave
+  // Describe in the detection pass (one detectAndCompute, then the strongest
+  // kept) instead of the reference's detect, limit, compute: one nonlinear
+  // scale space instead of two, and the orientations the detector assigns
+  // (OpenCV's compute assigns others). Not the paper's setting.
+  bool single_pass = false;
   void Check() const;
 };
 

@@ -84,6 +84,7 @@ struct JsonCodec<KazeOptions> {
     f("threshold", o.threshold);
     f("octaves", o.octaves);
     f("octave_layers", o.octave_layers);
+    f("single_pass", o.single_pass);
   }
 };
 

@@ -9,23 +9,29 @@ namespace duskmap {
 
 OpenCvExtractor::OpenCvExtractor(std::string name, cv::Ptr<cv::Feature2D> feature,
                                  DescriptorKind kind, int max_features, double max_depth_m,
-                                 bool root_sift)
+                                 bool root_sift, OpenCvPasses passes)
     : FeatureExtractor(max_features, max_depth_m),
       name_(std::move(name)),
       feature_(std::move(feature)),
       kind_(kind),
-      root_sift_(root_sift) {}
+      root_sift_(root_sift),
+      passes_(passes) {}
 
 void OpenCvExtractor::DetectAndDescribe(const cv::Mat& gray, std::vector<cv::KeyPoint>* keypoints,
                                         cv::Mat* descriptors) const {
   // OpenCV's pyramids assert on images that vanish at their coarsest level.
   if (std::min(gray.cols, gray.rows) < kMinImageSidePx) return;
-  feature_->detect(gray, *keypoints);
-  // Limit before describing (the reference's limitKeypoints), strongest first.
-  cv::Mat none;
-  KeepStrongest(max_features(), keypoints, &none);
-  if (keypoints->empty()) return;
-  feature_->compute(gray, *keypoints, *descriptors);
+  if (passes_ == OpenCvPasses::kSinglePass) {
+    feature_->detectAndCompute(gray, cv::noArray(), *keypoints, *descriptors);
+    if (!keypoints->empty()) KeepStrongest(max_features(), keypoints, descriptors);
+  } else {
+    feature_->detect(gray, *keypoints);
+    // Limit before describing (the reference's limitKeypoints), strongest first.
+    cv::Mat none;
+    KeepStrongest(max_features(), keypoints, &none);
+    if (keypoints->empty()) return;
+    feature_->compute(gray, *keypoints, *descriptors);
+  }
   if (keypoints->empty()) {
     descriptors->release();
     return;
@@ -80,7 +86,8 @@ std::unique_ptr<FeatureExtractor> CreateKazeExtractor(const KazeOptions& o, int 
       "kaze",
       cv::KAZE::create(o.extended, o.upright, static_cast<float>(o.threshold), o.octaves,
                        o.octave_layers, cv::KAZE::DIFF_PM_G2),
-      DescriptorKind::kFloat, max_features, max_depth_m);
+      DescriptorKind::kFloat, max_features, max_depth_m, /*root_sift=*/false,
+      o.single_pass ? OpenCvPasses::kSinglePass : OpenCvPasses::kDetectThenCompute);
 }
 
 std::unique_ptr<FeatureExtractor> CreateAkazeExtractor(const AkazeOptions& o, int max_features,

@@ -8,6 +8,18 @@
 
 namespace duskmap {
 
+// How detection and description are called.
+enum class OpenCvPasses {
+  // detect, keep the strongest max_features, then compute on them: the
+  // reference's order (RTAB-Map's Feature2D). OpenCV's compute builds its
+  // scale space again, and for KAZE assigns other orientations than its
+  // detection would (docs/engine.md, "Where KAZE's time goes").
+  kDetectThenCompute,
+  // one detectAndCompute, then keep the strongest max_features with their
+  // descriptors: one scale space, the detector's own orientations.
+  kSinglePass,
+};
+
 class OpenCvExtractor : public FeatureExtractor {
  public:
   // Smaller images give no features (OpenCV's pyramids fail on them).
@@ -15,7 +27,8 @@ class OpenCvExtractor : public FeatureExtractor {
 
   // `root_sift` post-processes float descriptors (L1 normalise, square root).
   OpenCvExtractor(std::string name, cv::Ptr<cv::Feature2D> feature, DescriptorKind kind,
-                  int max_features, double max_depth_m, bool root_sift = false);
+                  int max_features, double max_depth_m, bool root_sift = false,
+                  OpenCvPasses passes = OpenCvPasses::kDetectThenCompute);
   std::string name() const override { return name_; }
   DescriptorKind kind() const override { return kind_; }
 
@@ -28,6 +41,7 @@ class OpenCvExtractor : public FeatureExtractor {
   cv::Ptr<cv::Feature2D> feature_;
   DescriptorKind kind_;
   bool root_sift_;
+  OpenCvPasses passes_;
 };
 
 std::unique_ptr<FeatureExtractor> CreateSiftExtractor(const SiftOptions& o, int max_features,
