@@ -22,8 +22,8 @@ void OpenCvExtractor::DetectAndDescribe(const cv::Mat& gray, std::vector<cv::Key
   // OpenCV's pyramids assert on images that vanish at their coarsest level.
   if (std::min(gray.cols, gray.rows) < kMinImageSidePx) return;
   if (passes_ == OpenCvPasses::kSinglePass) {
+    // Every keypoint described; FeatureExtractor::Finish keeps the strongest.
     feature_->detectAndCompute(gray, cv::noArray(), *keypoints, *descriptors);
-    if (!keypoints->empty()) KeepStrongest(max_features(), keypoints, descriptors);
   } else {
     feature_->detect(gray, *keypoints);
     // Limit before describing (the reference's limitKeypoints), strongest first.
