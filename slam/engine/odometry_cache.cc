@@ -138,6 +138,9 @@ bool OdometryCache::OptimizesWithinErrors(CheckGraph* check, CacheValidationResu
   PoseGraphOptimizerOptions optimizer;
   optimizer.max_iterations = options_.max_iterations;
   optimizer.max_error_ratio = 0.0;  // checked below, without the prior links
+  // The check graph holds map poses and odometry poses side by side: always
+  // place the frames from the links before solving.
+  optimizer.initialization = PoseInitialization::kEveryOptimization;
   const OptimizationSummary summary = OptimizePoseGraph(optimizer, {check->added}, &check->graph);
   if (!summary.accepted()) return false;  // the solver failed
   for (const LinkKey& key : check->priors) check->graph.RemoveLink(key);

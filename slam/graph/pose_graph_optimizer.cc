@@ -1,5 +1,6 @@
 #include "slam/graph/pose_graph_optimizer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <queue>
@@ -96,9 +97,9 @@ ceres::Solver::Options SolverOptions(const PoseGraphOptimizerOptions& options) {
   solver.logging_type = ceres::SILENT;
   solver.minimizer_progress_to_stdout = false;
   solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-  if (!ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::SUITE_SPARSE)) {
-    solver.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
-  }
+  solver.sparse_linear_algebra_library_type =
+      options.sparse_linear_algebra == SparseLinearAlgebra::kSuiteSparse ? ceres::SUITE_SPARSE
+                                                                         : ceres::EIGEN_SPARSE;
   return solver;
 }
 
@@ -122,6 +123,10 @@ void PoseGraphOptimizerOptions::Check() const {
       << "PoseGraphOptimizerOptions.robust_loss_scale: must be > 0, got " << robust_loss_scale;
   SLAM_THROW_IF_NOT(ConfigError, max_error_ratio >= 0.0)
       << "PoseGraphOptimizerOptions.max_error_ratio: must be >= 0, got " << max_error_ratio;
+  SLAM_THROW_IF_NOT(ConfigError,
+                    sparse_linear_algebra != SparseLinearAlgebra::kSuiteSparse ||
+                        ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::SUITE_SPARSE))
+      << "PoseGraphOptimizerOptions.sparse_linear_algebra: this Ceres has no SuiteSparse";
   SLAM_THROW_IF_NOT(ConfigError, num_threads >= 1)
       << "PoseGraphOptimizerOptions.num_threads: must be >= 1, got " << num_threads;
 }
@@ -172,6 +177,42 @@ void InitializePosesFromLinks(PoseGraph* graph) {
   }
 }
 
+bool LinksJoinComponents(const PoseGraph& graph, const std::vector<LinkKey>& added) {
+  if (added.empty()) return false;
+  std::unordered_map<NodeId, NodeId> parent;
+  parent.reserve(graph.num_nodes());
+  for (const auto& [id, node] : graph.nodes()) parent[id] = id;
+  const auto find = [&parent](NodeId id) {
+    while (parent[id] != id) id = parent[id] = parent[parent[id]];
+    return id;
+  };
+  std::vector<LinkKey> sorted_added = added;
+  std::sort(sorted_added.begin(), sorted_added.end());
+  for (const auto& [key, link] : graph.links()) {
+    if (std::binary_search(sorted_added.begin(), sorted_added.end(), key)) continue;
+    const NodeId a = find(link.from), b = find(link.to);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+  for (const LinkKey& key : added) {
+    if (graph.HasLink(key) && find(key.from) != find(key.to)) return true;
+  }
+  return false;
+}
+
+namespace {
+
+bool ShouldInitialize(const PoseGraphOptimizerOptions& options, const PoseGraph& graph,
+                      const std::vector<LinkKey>& added) {
+  switch (options.initialization) {
+    case PoseInitialization::kEveryOptimization: return true;
+    case PoseInitialization::kWhenComponentsJoin: return LinksJoinComponents(graph, added);
+    case PoseInitialization::kNever: return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 OptimizationSummary OptimizePoseGraph(const PoseGraphOptimizerOptions& options,
                                       const std::vector<LinkKey>& links_added_this_step,
                                       PoseGraph* graph) {
@@ -194,7 +235,8 @@ OptimizationSummary OptimizePoseGraph(const PoseGraphOptimizerOptions& options,
   summary.num_components = static_cast<int>(graph->ConnectedComponents().size());
 
   PoseGraph candidate = *graph;
-  if (options.initialize_from_links) InitializePosesFromLinks(&candidate);
+  summary.reinitialized = ShouldInitialize(options, candidate, links_added_this_step);
+  if (summary.reinitialized) InitializePosesFromLinks(&candidate);
   PoseParameters params(candidate);
   ceres::Problem problem;
   BuildProblem(options, candidate, &params, &problem);

@@ -201,5 +201,78 @@ TEST(InitializePosesFromLinks, PrefersOdometryChains) {
   EXPECT_NEAR(graph.node(3).world_from_node.translation.x(), 2.0, 1e-12);
 }
 
+TEST(LinksJoinComponents, OnlyALinkBetweenUnconnectedPartsJoins) {
+  PoseGraph graph;
+  for (NodeId id = 1; id <= 4; ++id) graph.AddNode(id, id <= 2 ? 0 : 1, Rigid3d());
+  const Rigid3d step(Eigen::Quaterniond::Identity(), Eigen::Vector3d(1, 0, 0));
+  const Link odometry_a = MakeLink(1, 2, LinkType::kOdometry, step, Information6d::Identity());
+  const Link odometry_b = MakeLink(3, 4, LinkType::kOdometry, step, Information6d::Identity());
+  graph.AddLink(odometry_a);
+  graph.AddLink(odometry_b);
+  EXPECT_FALSE(LinksJoinComponents(graph, {}));
+  const Link across = MakeLink(4, 2, LinkType::kLoopClosure, step, Information6d::Identity());
+  graph.AddLink(across);
+  EXPECT_TRUE(LinksJoinComponents(graph, {KeyOf(across)}));
+  // Once joined, a second link between the sessions joins nothing.
+  const Link again = MakeLink(3, 1, LinkType::kProximity, step, Information6d::Identity());
+  graph.AddLink(again);
+  EXPECT_FALSE(LinksJoinComponents(graph, {KeyOf(again)}));
+  // Added together, the two links do join the sessions.
+  EXPECT_TRUE(LinksJoinComponents(graph, {KeyOf(across), KeyOf(again)}));
+  // Within one session nothing is joined.
+  const Link inside = MakeLink(2, 1, LinkType::kLoopClosure, step, Information6d::Identity());
+  graph.AddLink(inside);
+  EXPECT_FALSE(LinksJoinComponents(graph, {KeyOf(inside)}));
+}
+
+// The reference's rule (spec 7.3.4): poses start from the current ones unless
+// a link added this step joins two components. A within-session closure then
+// keeps the current poses as the starting point, a join re-initialises.
+TEST(OptimizePoseGraph, InitializesFromLinksOnlyWhenComponentsJoin) {
+  OdometryModel exact;
+  exact.yaw_bias_rad = exact.noise_m = exact.noise_rad = 0.0;
+  PoseGraphOptimizerOptions options;
+  options.initialization = PoseInitialization::kWhenComponentsJoin;
+
+  PoseGraph graph;
+  const std::vector<Rigid3d> truth0 = AddDriftingLoop(&graph, 1, 0, Rigid3d(), 2, exact);
+  const Rigid3d odom1_from_world(Eigen::Quaterniond(Eigen::AngleAxisd(2.0, Eigen::Vector3d::UnitZ())),
+                                 Eigen::Vector3d(10.0, -4.0, 1.0));
+  const NodeId first1 = 101;
+  const std::vector<Rigid3d> truth1 = AddDriftingLoop(&graph, first1, 1, odom1_from_world, 3, exact);
+
+  // A closure within session 0, on a graph whose poses were moved off the
+  // links: the solver starts from the moved poses.
+  graph.SetPose(20, Rigid3d(truth0[19].rotation, truth0[19].translation + Eigen::Vector3d(0, 0, 0.3)));
+  const Link inside = MakeLink(kLoopNodes, 1, LinkType::kLoopClosure,
+                               truth0[kLoopNodes - 1].Inverse() * truth0[0],
+                               DiagonalInformation(0.01, 0.005));
+  graph.AddLink(inside);
+  PoseGraph every = graph;
+  OptimizationSummary summary = OptimizePoseGraph(options, {KeyOf(inside)}, &graph);
+  ASSERT_TRUE(summary.accepted());
+  EXPECT_FALSE(summary.reinitialized);
+  EXPECT_GT(summary.initial_cost, 1.0);  // the moved pose costs until solved
+  PoseGraphOptimizerOptions always;
+  always.initialization = PoseInitialization::kEveryOptimization;
+  const OptimizationSummary every_summary = OptimizePoseGraph(always, {KeyOf(inside)}, &every);
+  EXPECT_TRUE(every_summary.reinitialized);
+  EXPECT_LT(every_summary.initial_cost, 1e-12);  // exact links: re-initialised poses cost nothing
+  EXPECT_LT(MeanPositionError(graph, truth0, 1), 1e-3);
+
+  // A closure from session 1 to session 0 joins them: re-initialised, and
+  // session 1 lands in session 0's frame.
+  const Link across = MakeLink(first1 + 9, 10, LinkType::kLoopClosure,
+                               truth1[9].Inverse() * truth0[9], DiagonalInformation(0.01, 0.005));
+  graph.AddLink(across);
+  summary = OptimizePoseGraph(options, {KeyOf(across)}, &graph);
+  ASSERT_TRUE(summary.accepted());
+  EXPECT_TRUE(summary.reinitialized);
+  EXPECT_LT(MeanPositionError(graph, truth1, first1), 1e-3);
+
+  options.initialization = PoseInitialization::kNever;
+  EXPECT_FALSE(OptimizePoseGraph(options, {}, &graph).reinitialized);
+}
+
 }  // namespace
 }  // namespace duskmap
