@@ -5,14 +5,19 @@
 //
 // Data: $DUSKMAP_BENCH_DATASET when set (a synthetic dataset with mapping
 // sessions 1-6 and localization session A), otherwise a dataset generated
-// once into /tmp/duskmap_engine_bench_<frames> with the default 640x480
-// camera and the first $DUSKMAP_BENCH_FRAMES (default 60) frames per session.
+// once into <system temp>/duskmap_engine_bench_<frames> (/tmp/...) with the
+// default 640x480 camera and the first $DUSKMAP_BENCH_FRAMES (default 60)
+// frames per session. That folder is kept across runs on purpose
+// (bench_temp_dir.h's BenchCachePath, not the per-process scratch folder):
+// later runs skip the generation, and the `duskmap map` measurements of
+// docs/engine.md use it.
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <map>
 
+#include "bench/bench_temp_dir.h"
 #include "slam/core/timer.h"
 #include "slam/engine/localizer.h"
 #include "slam/engine/mapper.h"
@@ -42,7 +47,7 @@ int BenchFrames() {
 
 std::string DatasetPath() {
   if (const char* env = std::getenv("DUSKMAP_BENCH_DATASET")) return env;
-  const std::string path = "/tmp/duskmap_engine_bench_" + std::to_string(BenchFrames());
+  const std::string path = bench::BenchCachePath("duskmap_engine_bench_" + std::to_string(BenchFrames()));
   if (!std::filesystem::exists(path)) {
     GeneratorConfig config;
     config.max_frames = BenchFrames();

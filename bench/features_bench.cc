@@ -17,8 +17,6 @@
 // e.g. one written by scripts/make_test_superglue_onnx.py (same size and
 // graph as the official weights); it runs with OpenCV's default threads
 // (CPU time is the whole process's).
-#include <unistd.h>
-
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -28,6 +26,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "bench/bench_temp_dir.h"
 #include "slam/features/feature_extractor.h"
 #include "slam/features/feature_options_json.h"
 #include "slam/features/h5_feature_file.h"
@@ -122,9 +121,7 @@ void BM_SuperGlueMatch(benchmark::State& state) {
 void BM_ImportH5(benchmark::State& state, bool binary) {
   constexpr int kFrames = 100;
   constexpr int kFeatures = 1000;
-  const std::string path = (std::filesystem::temp_directory_path() /
-                            ("duskmap_bench_import_" + std::to_string(::getpid()) + ".h5"))
-                               .string();
+  const std::string path = bench::BenchTempPath("import.h5");
   {
     H5FeatureFile file(path, H5FeatureFile::Mode::kCreate);
     for (int i = 0; i < kFrames; ++i) {

@@ -2,14 +2,13 @@
 // lighting is prepared (target: >= 20 frames/s on one core), the cost of the
 // lighting preparation, the frame path (render + camera + depth) and the
 // whole per-frame generation cost including the PNG files the dataset holds.
-#include <unistd.h>
-
 #include <filesystem>
 #include <memory>
 #include <string>
 
 #include <benchmark/benchmark.h>
 
+#include "bench/bench_temp_dir.h"
 #include "slam/io/tum_writer.h"
 #include "slam/synthetic/apartment.h"
 #include "slam/synthetic/furniture_catalog.h"
@@ -78,13 +77,11 @@ void BM_CaptureFrame640x480(benchmark::State& state) {
 BENCHMARK(BM_CaptureFrame640x480)->Unit(benchmark::kMillisecond);
 
 // Capture plus writing the colour and depth PNGs (what `duskmap generate`
-// does per frame), into a scratch folder under the system temp directory.
+// does per frame), into a scratch folder of this process (bench_temp_dir.h).
 void BM_CaptureAndWriteFrame640x480(benchmark::State& state) {
   Fixture& f = Shared();
   SessionSimulator simulator(f.config, f.scene, 19.7, 2);
-  const std::string folder =
-      (std::filesystem::temp_directory_path() / ("duskmap_rendering_bench_" + std::to_string(::getpid()))).string();
-  std::filesystem::remove_all(folder);
+  const std::string folder = bench::BenchTempDir("capture_and_write");
   TumCalibration calibration;
   calibration.camera = f.config.camera.Intrinsics();
   calibration.depth_scale = 1000.0;

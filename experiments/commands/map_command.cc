@@ -94,7 +94,7 @@ RunFn SetupMap(CLI::App& command) {
     const auto dataset = OpenDataset(args->dataset, args->format, read);
     const MappingRun run = BuildMap(*dataset, args->sessions, options);
     SaveMap(run.map, args->output);
-    nlohmann::json summary = MapSummaryToJson(SummarizeMap(run.map));
+    nlohmann::json summary = ToJsonObject(SummarizeMap(run.map));
     summary["frames"] = run.frames.size();
     summary["wall_s"] = run.wall_s;
     summary["index_build_s"] = run.index_build_s;

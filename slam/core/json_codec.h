@@ -14,12 +14,16 @@
 //   nlohmann::json j = ToJsonObject(o);                              // every field
 //
 // A field is a value JsonFields::Read takes (numbers with range checks,
-// strings, bools, vectors, maps), an enum with JsonEnumNames, an
-// Eigen::Vector3d (three numbers), or a struct with its own JsonCodec (a
-// nested object, read with its unknown keys rejected by their full path).
-// Reading keeps a field's default when its key is absent. A struct's codec
-// lives beside the struct's module (`<module>/<name>_json.h`), so whoever
-// composes the struct composes its codec.
+// strings, bools, vectors, maps), an enum with JsonEnumNames, an Eigen
+// vector of doubles (Vector2d, Vector3d: so many numbers), a struct with its
+// own JsonCodec (a nested object, read with its unknown keys rejected by their
+// full path), a std::vector of such structs (an array of objects, each named
+// "key[i]" in errors), or a std::optional of any of these (null when empty).
+// Reading keeps a field's default when its key is absent; a key declared
+// with JsonRequired must be present:
+//       f("name", o.name, JsonRequired{});   // "<where>: missing key 'name'"
+// A struct's codec lives beside the struct's module
+// (`<module>/<name>_json.h`), so whoever composes the struct composes its codec.
 //
 // Why a field list and not NLOHMANN_DEFINE_TYPE_*: those macros either
 // require every key or silently ignore unknown ones, cannot name a bad value
@@ -29,6 +33,7 @@
 
 #include <cstring>
 #include <iterator>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -59,6 +64,9 @@ struct JsonDerivedKey {
 };
 using JsonDerivedKeys = std::vector<JsonDerivedKey>;
 
+// Marks a key the reader requires (the writer always writes every field).
+struct JsonRequired {};
+
 namespace json_codec_internal {
 
 template <typename T, typename = void>
@@ -70,6 +78,24 @@ template <typename T, typename = void>
 struct HasEnumNames : std::false_type {};
 template <typename T>
 struct HasEnumNames<T, std::void_t<decltype(JsonEnumNames<T>::kNames)>> : std::true_type {};
+
+template <typename T>
+struct IsOptional : std::false_type {};
+template <typename T>
+struct IsOptional<std::optional<T>> : std::true_type {};
+
+// A std::vector of structs with a codec.
+template <typename T>
+struct IsCodecVector : std::false_type {};
+template <typename T>
+struct IsCodecVector<std::vector<T>> : HasCodec<T> {};
+
+// An Eigen column vector of doubles of fixed size (Vector2d, Vector3d, ...).
+template <typename T>
+struct IsEigenVector : std::false_type {};
+template <int N, int Options, int MaxRows>
+struct IsEigenVector<Eigen::Matrix<double, N, 1, Options, MaxRows, 1>>
+    : std::bool_constant<(N > 0)> {};
 
 template <typename T, typename = void>
 struct HasCheck : std::false_type {};
@@ -136,17 +162,51 @@ class JsonCodecReader {
       std::string name;
       fields_->Read(key, &name);
       value = ParseJsonEnum<T>(name, fields_->where() + "." + key);
-    } else if constexpr (std::is_same_v<T, Eigen::Vector3d>) {
-      std::vector<double> xyz;
+    } else if constexpr (IsOptional<T>::value) {
+      if (fields_->Has(key) && fields_->object().at(key).is_null()) {
+        nlohmann::json null;
+        fields_->Read(key, &null);  // marks it used
+        value.reset();
+        return;
+      }
       const bool present = fields_->Has(key);
-      fields_->Read(key, &xyz);
+      typename T::value_type item = value.value_or(typename T::value_type());
+      (*this)(key, item, derived);
+      if (present) value = std::move(item);
+    } else if constexpr (IsCodecVector<T>::value) {
+      nlohmann::json items;
+      const bool present = fields_->Has(key);
+      fields_->Read(key, &items);  // marks it used
       if (!present) return;
-      SLAM_THROW_IF_NOT(ConfigError, xyz.size() == 3)
-          << fields_->where() << "." << key << ": expected 3 numbers, got " << xyz.size();
-      value = Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
+      const std::string where = fields_->where() + "." + key;
+      SLAM_THROW_IF_NOT(ConfigError, items.is_array())
+          << where << ": wrong type (" << items.type_name() << ", expected an array)";
+      T out(items.size());
+      for (size_t i = 0; i < items.size(); ++i) {
+        JsonFields item(items[i], where + "[" + std::to_string(i) + "]");
+        ReadFields(item, &out[i]);
+      }
+      value = std::move(out);
+    } else if constexpr (IsEigenVector<T>::value) {
+      std::vector<double> numbers;
+      const bool present = fields_->Has(key);
+      fields_->Read(key, &numbers);
+      if (!present) return;
+      SLAM_THROW_IF_NOT(ConfigError, numbers.size() == static_cast<size_t>(T::RowsAtCompileTime))
+          << fields_->where() << "." << key << ": expected " << T::RowsAtCompileTime
+          << " numbers, got " << numbers.size();
+      for (int i = 0; i < T::RowsAtCompileTime; ++i) value[i] = numbers[static_cast<size_t>(i)];
     } else {
       fields_->Read(key, &value);
     }
+  }
+
+  // A key that must be present: ConfigError "<where>: missing key 'key'".
+  template <typename T>
+  void operator()(const char* key, T& value, JsonRequired) {
+    SLAM_THROW_IF_NOT(ConfigError, fields_->Has(key))
+        << fields_->where() << ": missing key '" << key << "'";
+    (*this)(key, value);
   }
 
   // Reads every field of *value that `fields` holds, then rejects the keys
@@ -178,11 +238,28 @@ class JsonCodecWriter {
       (*object_)[key] = std::move(child);
     } else if constexpr (HasEnumNames<T>::value) {
       (*object_)[key] = JsonEnumName(value);
-    } else if constexpr (std::is_same_v<T, Eigen::Vector3d>) {
-      (*object_)[key] = {value.x(), value.y(), value.z()};
+    } else if constexpr (IsOptional<T>::value) {
+      if (value) {
+        (*this)(key, *value, derived);
+      } else {
+        (*object_)[key] = nullptr;
+      }
+    } else if constexpr (IsCodecVector<T>::value) {
+      nlohmann::json items = nlohmann::json::array();
+      for (const auto& item : value) items.push_back(WriteFields(item));
+      (*object_)[key] = std::move(items);
+    } else if constexpr (IsEigenVector<T>::value) {
+      nlohmann::json numbers = nlohmann::json::array();
+      for (int i = 0; i < T::RowsAtCompileTime; ++i) numbers.push_back(value[i]);
+      (*object_)[key] = std::move(numbers);
     } else {
       (*object_)[key] = value;
     }
+  }
+
+  template <typename T>
+  void operator()(const char* key, const T& value, JsonRequired) {
+    (*this)(key, value);
   }
 
   template <typename T>

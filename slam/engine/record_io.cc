@@ -4,6 +4,9 @@
 #include <set>
 
 #include "slam/core/check.h"
+#include "slam/core/json_codec.h"
+#include "slam/engine/localization_record_json.h"
+#include "slam/engine/mapper_json.h"
 #include "slam/io/trajectory_io.h"
 
 namespace duskmap {
@@ -12,11 +15,6 @@ namespace {
 nlohmann::json PoseToJson(const Rigid3d& pose) {
   return {{"t", {pose.translation.x(), pose.translation.y(), pose.translation.z()}},
           {"q_xyzw", {pose.rotation.x(), pose.rotation.y(), pose.rotation.z(), pose.rotation.w()}}};
-}
-
-template <typename T>
-nlohmann::json Optional(const std::optional<T>& value) {
-  return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
 }
 
 void Flatten(const nlohmann::json& value, const std::string& prefix,
@@ -52,54 +50,42 @@ std::string CsvField(const std::string& text) {
 
 }  // namespace
 
+// The keys that are one field each go through the codecs' writer (enums by
+// name, std::optional as null); the others are said here: null unless the
+// frame re-localized (matched_*), 0 meaning none (lcd_hypothesis), the pose as
+// {"t", "q_xyzw"}, the best places' adjusted likelihood as "likelihood", and
+// the ground-truth check as three keys of the record.
 nlohmann::json LocalizationRecordToJson(const LocalizationRecord& r) {
-  nlohmann::json j;
-  j["frame"] = r.frame_index;
-  j["timestamp_s"] = r.timestamp_s;
-  j["relocalized"] = r.relocalized;
-  j["outcome"] = LocalizationOutcomeName(r.outcome);
-  j["lcd_status"] = LcdStatusName(r.lcd_status);
-  j["registration_status"] =
-      r.registration_status ? nlohmann::json(RegistrationStatusName(*r.registration_status))
-                            : nlohmann::json(nullptr);
+  nlohmann::json j = nlohmann::json::object();
+  JsonCodecWriter f(&j);
+  f("frame", r.frame_index);
+  f("timestamp_s", r.timestamp_s);
+  f("relocalized", r.relocalized);
+  f("outcome", r.outcome);
+  f("lcd_status", r.lcd_status);
+  f("registration_status", r.registration_status);
+  f("lcd_score", r.lcd_score);
+  f("candidates_tried", r.candidates_tried);
+  f("attempts", r.attempts);
+  f("proximity_candidates", r.proximity_candidates);
+  f("inliers", r.inliers);
+  f("cache_validation", r.cache_validation);
+  f("features", r.num_features);
+  f("jump_mm", r.jump_mm);
+  f("distance_since_last_m", r.distance_since_last_m);
+  f("timings_ms", r.timings);
   j["lcd_hypothesis"] = r.lcd_hypothesis ? nlohmann::json(r.lcd_hypothesis) : nlohmann::json(nullptr);
-  j["lcd_score"] = r.lcd_score;
   nlohmann::json top = nlohmann::json::array();
   for (const LcdHypothesis& h : r.lcd_top) {
     top.push_back({{"node", h.node}, {"posterior", h.posterior}, {"likelihood", h.adjusted_likelihood}});
   }
   j["lcd_top"] = top;
-  j["candidates_tried"] = r.candidates_tried;
-  nlohmann::json attempts = nlohmann::json::array();
-  for (const CandidateAttempt& a : r.attempts) {
-    attempts.push_back({{"node", a.node},
-                        {"session", a.session},
-                        {"source", LinkTypeName(a.source)},
-                        {"status", RegistrationStatusName(a.status)},
-                        {"matches", a.matches},
-                        {"inliers", a.inliers},
-                        {"truth_distance_m", Optional(a.truth_distance_m)},
-                        {"truth_angle_deg", Optional(a.truth_angle_deg)}});
-  }
-  j["attempts"] = attempts;
-  j["proximity_candidates"] = r.proximity_candidates;
   j["matched_node"] = r.relocalized ? nlohmann::json(r.matched_node) : nlohmann::json(nullptr);
   j["matched_session"] =
       r.relocalized ? nlohmann::json(r.matched_session) : nlohmann::json(nullptr);
-  j["matched_by"] = r.relocalized ? nlohmann::json(LinkTypeName(r.matched_by)) : nlohmann::json(nullptr);
-  j["inliers"] = r.inliers;
-  j["cache_validation"] = r.cache_validation
-                             ? nlohmann::json(CacheValidationName(*r.cache_validation))
-                             : nlohmann::json(nullptr);
-  j["features"] = r.num_features;
-  j["jump_mm"] = Optional(r.jump_mm);
+  j["matched_by"] =
+      r.relocalized ? nlohmann::json(JsonEnumName(r.matched_by)) : nlohmann::json(nullptr);
   j["pose"] = r.map_from_camera ? PoseToJson(*r.map_from_camera) : nlohmann::json(nullptr);
-  j["distance_since_last_m"] = r.distance_since_last_m;
-  j["timings_ms"] = {{"features", r.timings.features_ms},
-                     {"lcd", r.timings.lcd_ms},
-                     {"proximity", r.timings.proximity_ms},
-                     {"registration", r.timings.registration_ms},
-                     {"total", r.timings.total_ms}};
   if (r.check) {
     j["correct"] = r.check->correct;
     j["error_m"] = r.check->error.translation_m;
@@ -112,26 +98,24 @@ nlohmann::json LocalizationRecordToJson(const LocalizationRecord& r) {
   return j;
 }
 
+// "optimization" is the status of the frame's optimisation, or "none" when
+// none ran: two fields in one key, said here.
 nlohmann::json MappingResultToJson(const MappingFrameResult& r) {
-  return {{"node", r.node},
-          {"session", r.session},
-          {"features", r.num_features},
-          {"lcd_status", LcdStatusName(r.lcd_status)},
-          {"lcd_hypothesis", r.lcd_hypothesis},
-          {"registrations", r.registrations},
-          {"loop_closures_added", r.loop_closures_added},
-          {"proximity_links_added", r.proximity_links_added},
-          {"optimization", r.optimized ? OptimizationStatusName(r.optimization_status) : "none"},
-          {"links_rejected", r.links_rejected},
-          {"nodes_reduced", r.nodes_reduced},
-          {"timings_ms",
-           {{"features", r.timings.features_ms},
-            {"lcd", r.timings.lcd_ms},
-            {"proximity", r.timings.proximity_ms},
-            {"registration", r.timings.registration_ms},
-            {"optimization", r.timings.optimization_ms},
-            {"reduction", r.timings.reduction_ms},
-            {"total", r.timings.total_ms}}}};
+  nlohmann::json j = nlohmann::json::object();
+  JsonCodecWriter f(&j);
+  f("node", r.node);
+  f("session", r.session);
+  f("features", r.num_features);
+  f("lcd_status", r.lcd_status);
+  f("lcd_hypothesis", r.lcd_hypothesis);
+  f("registrations", r.registrations);
+  f("loop_closures_added", r.loop_closures_added);
+  f("proximity_links_added", r.proximity_links_added);
+  f("links_rejected", r.links_rejected);
+  f("nodes_reduced", r.nodes_reduced);
+  f("timings_ms", r.timings);
+  j["optimization"] = r.optimized ? OptimizationStatusName(r.optimization_status) : "none";
+  return j;
 }
 
 void WriteJsonLines(std::ostream& out, const std::vector<nlohmann::json>& rows) {

@@ -7,7 +7,6 @@
 #include "slam/core/check.h"
 #include "slam/core/timer.h"
 #include "slam/engine/vocabulary_index.h"
-#include "slam/map/map_memory_json.h"
 
 namespace duskmap {
 
@@ -48,15 +47,6 @@ MapSummary SummarizeMap(const Map& map) {
   s.vocabulary_words = map.words().ids.size();
   s.memory = ComputeMapMemory(map);
   return s;
-}
-
-nlohmann::json MapSummaryToJson(const MapSummary& s) {
-  return {{"sessions", s.num_sessions},
-          {"nodes_per_session", s.nodes_per_session},
-          {"links_by_type", s.links_by_type},
-          {"connected_session_groups", s.connected_groups},
-          {"vocabulary_words", s.vocabulary_words},
-          {"memory_bytes", ToJsonObject(s.memory)}};
 }
 
 ReaderFrameSource::ReaderFrameSource(std::unique_ptr<SessionReader> reader)

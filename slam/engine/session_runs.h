@@ -49,8 +49,8 @@ struct MapSummary {
   MapMemory memory;
 };
 
+// JSON: ToJsonObject(summary) with session_runs_json.h.
 MapSummary SummarizeMap(const Map& map);
-nlohmann::json MapSummaryToJson(const MapSummary& summary);
 
 // One session's frames as the engine drivers consume them. A source either
 // hands out frames with their images (the engine extracts the features) or

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,19 @@ struct Outer {
   void Check() const {
     SLAM_THROW_IF_NOT(ConfigError, scale_m > 0) << "Outer.scale_m: must be > 0";
   }
+};
+
+// A list element: required keys, an optional enum and a 2-vector.
+struct Item {
+  std::string name;
+  std::optional<Colour> colour;
+  std::optional<double> weight = 1.0;
+  Eigen::Vector2d at = Eigen::Vector2d::Zero();
+};
+
+struct List {
+  std::vector<Item> items = {Item{"default", std::nullopt, 1.0, {0.0, 0.0}}};
+  std::optional<Inner> inner;
 };
 
 }  // namespace
@@ -59,6 +73,26 @@ struct JsonCodec<Outer> {
     f("per_type", o.per_type);
     f("axis", o.axis);
     f("inner", o.inner, {{"seed", "the outer seed"}});
+  }
+};
+
+template <>
+struct JsonCodec<Item> {
+  template <typename F, typename O>
+  static void Visit(F& f, O& o) {
+    f("name", o.name, JsonRequired{});
+    f("colour", o.colour);
+    f("weight", o.weight);
+    f("at", o.at);
+  }
+};
+
+template <>
+struct JsonCodec<List> {
+  template <typename F, typename O>
+  static void Visit(F& f, O& o) {
+    f("items", o.items);
+    f("inner", o.inner);
   }
 };
 
@@ -107,6 +141,64 @@ TEST(JsonCodec, ErrorsNameTheFullPath) {
             "x.json.inner: expected a JSON object, got number");
   EXPECT_EQ(ErrorOf([] { Read(R"({"scale_m": -1})"); }), "x.json: Outer.scale_m: must be > 0");
   EXPECT_EQ(ErrorOf([] { Read(R"({"_comment": "free text"})"); }), "");
+}
+
+List ReadList(const char* text) {
+  return ReadJsonOptions<List>(nlohmann::json::parse(text), "l.json");
+}
+
+TEST(JsonCodec, OptionalsAreNullWhenEmptyAndListsOfStructsAreArrays) {
+  List list;
+  list.items = {Item{"a", Colour::kGreen, std::nullopt, {1.5, -2.0}},
+                Item{"b", std::nullopt, 3.0, {0.0, 0.0}}};
+  const nlohmann::json json = ToJsonObject(list);
+  EXPECT_EQ(json.dump(),
+            R"({"inner":null,"items":[{"at":[1.5,-2.0],"colour":"green","name":"a","weight":null},)"
+            R"({"at":[0.0,0.0],"colour":null,"name":"b","weight":3.0}]})");
+  const List back = ReadJsonOptions<List>(json, "back");
+  EXPECT_EQ(ToJsonObject(back), json);
+  list.inner = Inner();
+  EXPECT_EQ(ToJsonObject(list)["inner"], ToJsonObject(Inner()));
+}
+
+TEST(JsonCodec, ReadsOptionalsAndListsOfStructs) {
+  const List absent = ReadList("{}");  // absent keys keep the defaults
+  ASSERT_EQ(absent.items.size(), 1u);
+  EXPECT_EQ(absent.items[0].name, "default");
+  EXPECT_FALSE(absent.inner.has_value());
+  const List read = ReadList(R"({"items": [{"name": "x", "colour": "red", "at": [1, 2]},
+                                           {"name": "y", "weight": null}],
+                                 "inner": {"count": 5}})");
+  ASSERT_EQ(read.items.size(), 2u);
+  ASSERT_TRUE(read.items[0].colour.has_value());
+  EXPECT_EQ(*read.items[0].colour, Colour::kRed);
+  ASSERT_TRUE(read.items[0].weight.has_value());
+  EXPECT_EQ(*read.items[0].weight, 1.0);
+  EXPECT_TRUE(read.items[0].at.isApprox(Eigen::Vector2d(1, 2)));
+  EXPECT_FALSE(read.items[1].colour.has_value());
+  EXPECT_FALSE(read.items[1].weight.has_value());
+  ASSERT_TRUE(read.inner.has_value());
+  EXPECT_EQ(read.inner->count, 5);
+  EXPECT_EQ(read.inner->seed, 7u);
+  EXPECT_TRUE(ReadList(R"({"items": []})").items.empty());
+}
+
+TEST(JsonCodec, ListAndRequiredErrorsNameTheFullPath) {
+  using testing::ErrorOf;
+  EXPECT_EQ(ErrorOf([] { ReadList(R"({"items": [{"name": "a"}, {"colour": "red"}]})"); }),
+            "l.json.items[1]: missing key 'name'");
+  EXPECT_EQ(ErrorOf([] { ReadList(R"({"items": [{"name": "a", "wieght": 2}]})"); }),
+            "l.json.items[0]: unknown key 'wieght'");
+  EXPECT_EQ(ErrorOf([] { ReadList(R"({"items": [{"name": "a", "colour": "blue"}]})"); }),
+            "l.json.items[0].colour: expected red or green, got 'blue'");
+  EXPECT_EQ(ErrorOf([] { ReadList(R"({"items": [{"name": "a", "at": [1, 2, 3]}]})"); }),
+            "l.json.items[0].at: expected 2 numbers, got 3");
+  EXPECT_EQ(ErrorOf([] { ReadList(R"({"items": {"name": "a"}})"); }),
+            "l.json.items: wrong type (object, expected an array)");
+  EXPECT_EQ(ErrorOf([] { ReadList(R"({"items": [3]})"); }),
+            "l.json.items[0]: expected a JSON object, got number");
+  EXPECT_EQ(ErrorOf([] { ReadList(R"({"inner": {"cuont": 1}})"); }),
+            "l.json.inner: unknown key 'cuont'");
 }
 
 }  // namespace

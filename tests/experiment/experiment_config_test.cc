@@ -37,6 +37,13 @@ TEST(ReadExperimentOptions, ReadsTheReleasedDataConfigWithItsClockTimes) {
   EXPECT_EQ(options.session_clock_times.at("F"), "19:42");
 }
 
+TEST(ReadExperimentOptions, ReadsTheQuickMatrix) {
+  const ExperimentOptions options =
+      ReadExperimentOptions(std::string(DUSKMAP_SOURCE_DIR) + "/configs/quick_matrix.json");
+  EXPECT_FALSE(options.features.empty());
+  EXPECT_FALSE(options.maps.empty());
+}
+
 TEST(ReadExperimentOptions, RejectsAMalformedClockTimeNamingTheSession) {
   const std::string path = WriteTemp(
       "clock.json", R"({"dataset": {"path": "d"}, "features": ["SI"], "maps": ["1"],

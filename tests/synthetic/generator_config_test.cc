@@ -99,6 +99,31 @@ TEST(ReadGeneratorConfig, InconsistentValuesAreRejected) {
   EXPECT_NE(ErrorOf(WriteConfig("depth", R"({"depth": {"max_range_m": 0.1}})")).find("depth.min_range_m"), std::string::npos);
 }
 
+// Every generator config shipped under configs/ (the quick profile's
+// overrides are one on their own) loads.
+TEST(ReadGeneratorConfig, EveryShippedGeneratorConfigLoads) {
+  const std::string configs = std::string(DUSKMAP_SOURCE_DIR) + "/configs/";
+  EXPECT_EQ(ReadGeneratorConfig(configs + "sunset_apartment_furnished.json").scene.furniture.pieces.size(), 15u);
+  const GeneratorConfig quick = ReadGeneratorConfig(configs + "quick/dataset_overrides.json");
+  EXPECT_EQ(quick.camera.width, 480);
+  EXPECT_EQ(quick.route.frame_rate_hz, 0.5);
+  EXPECT_EQ(quick.sessions.size(), GeneratorConfig::DefaultSessions().size());
+}
+
+TEST(ReadGeneratorConfig, ErrorsNameTheListItemAndTheDerivedSeed) {
+  const std::string missing = WriteConfig(
+      "session_time", R"({"sessions": [{"name": "1", "clock_time": "16:46"}, {"name": "2"}]})");
+  EXPECT_EQ(ErrorOf(missing), missing + ".sessions[1]: missing key 'clock_time'");
+  const std::string unknown =
+      WriteConfig("session_key", R"({"sessions": [{"name": "1", "clock_time": "16:46", "rol": "mapping"}]})");
+  EXPECT_EQ(ErrorOf(unknown), unknown + ".sessions[0]: unknown key 'rol'");
+  const std::string seed = WriteConfig("scene_seed", R"({"scene": {"seed": 3}})");
+  EXPECT_EQ(ErrorOf(seed), seed + ".scene.seed: not set here; seed sets it");
+  const std::string position = WriteConfig(
+      "position", R"({"scene": {"furniture": {"pieces": [{"model": "m", "room": "kitchen", "position_m": [1]}]}}})");
+  EXPECT_EQ(ErrorOf(position), position + ".scene.furniture.pieces[0].position_m: expected 2 numbers, got 1");
+}
+
 TEST(ReadGeneratorConfig, MissingFileNamesIt) {
   EXPECT_NE(ErrorOf("/nonexistent/duskmap.json").find("/nonexistent/duskmap.json"), std::string::npos);
 }

@@ -1,0 +1,22 @@
+// JSON names of the link types (slam/core/json_codec.h), as LinkTypeName
+// spells them: "odometry", "loop_closure", "proximity", "merged", "prior".
+#pragma once
+
+#include <utility>
+
+#include "slam/core/graph_types.h"
+#include "slam/core/json_codec.h"
+
+namespace duskmap {
+
+template <>
+struct JsonEnumNames<LinkType> {
+  static constexpr std::pair<LinkType, const char*> kNames[] = {
+      {LinkType::kOdometry, "odometry"},
+      {LinkType::kLoopClosure, "loop_closure"},
+      {LinkType::kProximity, "proximity"},
+      {LinkType::kMerged, "merged"},
+      {LinkType::kPrior, "prior"}};
+};
+
+}  // namespace duskmap

@@ -1,0 +1,20 @@
+// JSON names of the odometry cache's validation results
+// (slam/core/json_codec.h), as CacheValidationName spells them.
+#pragma once
+
+#include <utility>
+
+#include "slam/core/json_codec.h"
+#include "slam/engine/odometry_cache.h"
+
+namespace duskmap {
+
+template <>
+struct JsonEnumNames<CacheValidation> {
+  static constexpr std::pair<CacheValidation, const char*> kNames[] = {
+      {CacheValidation::kApplied, "applied"},
+      {CacheValidation::kWaiting, "waiting"},
+      {CacheValidation::kRejected, "rejected"}};
+};
+
+}  // namespace duskmap

@@ -1,0 +1,23 @@
+// JSON names of the loop closure detector's statuses (slam/core/json_codec.h),
+// as LcdStatusName spells them; the per-frame records write them.
+#pragma once
+
+#include <utility>
+
+#include "slam/core/json_codec.h"
+#include "slam/retrieval/lcd_result.h"
+
+namespace duskmap {
+
+template <>
+struct JsonEnumNames<LcdStatus> {
+  static constexpr std::pair<LcdStatus, const char*> kNames[] = {
+      {LcdStatus::kAccepted, "accepted"},
+      {LcdStatus::kBelowThreshold, "below_threshold"},
+      {LcdStatus::kRejectedSinglePlace, "rejected_single_place"},
+      {LcdStatus::kRejectedLoopRatio, "rejected_loop_ratio"},
+      {LcdStatus::kBadSignature, "bad_signature"},
+      {LcdStatus::kNoCandidates, "no_candidates"}};
+};
+
+}  // namespace duskmap
