@@ -20,15 +20,18 @@ namespace duskmap::testing {
 
 namespace internal {
 
-// Removes the process's temporary root at exit, from the process that made it
-// only (a forked child that exits normally must not delete its parent's files).
-class ProcessTempRoot {
+// A process's scratch root, <system temp>/<prefix><pid>/, removed at exit by
+// the process that made it only (a forked child that exits normally must not
+// delete its parent's files), unless the environment variable `keep_env` is
+// set. The benches use it too (bench/bench_temp_dir.h).
+class ProcessScratchRoot {
  public:
-  ProcessTempRoot()
+  ProcessScratchRoot(const std::string& prefix, const char* keep_env)
       : owner_(::getpid()),
-        path_(std::filesystem::temp_directory_path() / ("duskmap_tests_" + std::to_string(owner_))) {}
-  ~ProcessTempRoot() {
-    if (::getpid() != owner_ || std::getenv("DUSKMAP_KEEP_TEST_TMP") != nullptr) return;
+        keep_env_(keep_env),
+        path_(std::filesystem::temp_directory_path() / (prefix + std::to_string(owner_))) {}
+  ~ProcessScratchRoot() {
+    if (::getpid() != owner_ || std::getenv(keep_env_) != nullptr) return;
     namespace fs = std::filesystem;
     std::error_code ignored;
     if (!fs::exists(path_, ignored)) return;
@@ -42,16 +45,34 @@ class ProcessTempRoot {
     fs::permissions(path_, fs::perms::owner_all, fs::perm_options::add, ignored);
     fs::remove_all(path_, ignored);
   }
+  ProcessScratchRoot(const ProcessScratchRoot&) = delete;
+  ProcessScratchRoot& operator=(const ProcessScratchRoot&) = delete;
   const std::filesystem::path& path() const { return path_; }
+
+  // An empty folder named `stem` under the root, made anew on each call.
+  std::string Dir(const std::string& stem) const {
+    namespace fs = std::filesystem;
+    const fs::path dir = path_ / stem;
+    std::error_code ignored;
+    fs::remove_all(dir, ignored);
+    fs::create_directories(dir);
+    return dir.string();
+  }
+  // A path for a file named `name` under the root (the file is not made).
+  std::string Path(const std::string& name) const {
+    std::filesystem::create_directories(path_);
+    return (path_ / name).string();
+  }
 
  private:
   pid_t owner_;
+  const char* keep_env_;
   std::filesystem::path path_;
 };
 
-inline const std::filesystem::path& ProcessTempRootPath() {
-  static const ProcessTempRoot root;
-  return root.path();
+inline const ProcessScratchRoot& ProcessTempRoot() {
+  static const ProcessScratchRoot root("duskmap_tests_", "DUSKMAP_KEEP_TEST_TMP");
+  return root;
 }
 
 }  // namespace internal
@@ -59,20 +80,13 @@ inline const std::filesystem::path& ProcessTempRootPath() {
 // An empty folder named after `stem` under this process's temporary root,
 // made anew on each call with the same stem.
 inline std::string ProcessTempDir(const std::string& stem) {
-  namespace fs = std::filesystem;
-  const fs::path dir = internal::ProcessTempRootPath() / stem;
-  std::error_code ignored;
-  fs::remove_all(dir, ignored);
-  fs::create_directories(dir);
-  return dir.string();
+  return internal::ProcessTempRoot().Dir(stem);
 }
 
 // A path for a file named `name` under this process's temporary root (the
 // file itself is not made).
 inline std::string ProcessTempPath(const std::string& name) {
-  namespace fs = std::filesystem;
-  fs::create_directories(internal::ProcessTempRootPath());
-  return (internal::ProcessTempRootPath() / name).string();
+  return internal::ProcessTempRoot().Path(name);
 }
 
 }  // namespace duskmap::testing
