@@ -6,6 +6,7 @@
 
 #include "slam/core/check.h"
 #include "slam/core/json_fields.h"
+#include "slam/io/calibration_json.h"
 
 namespace duskmap {
 
@@ -18,15 +19,7 @@ TumCalibration ReadCalibration(const std::string& path) {
   }
   TumCalibration c;
   try {
-    JsonFields f(json, path);
-    f.ReadRequired("width", &c.camera.width);
-    f.ReadRequired("height", &c.camera.height);
-    f.ReadRequired("fx", &c.camera.fx);
-    f.ReadRequired("fy", &c.camera.fy);
-    f.ReadRequired("cx", &c.camera.cx);
-    f.ReadRequired("cy", &c.camera.cy);
-    f.ReadRequired("depth_scale", &c.depth_scale);
-    f.RejectUnknown();
+    c = ReadJsonOptions<TumCalibration>(json, path);
   } catch (const ConfigError& e) {
     throw InputError(e.what());
   }
@@ -40,10 +33,7 @@ TumCalibration ReadCalibration(const std::string& path) {
 }
 
 void WriteCalibration(const std::string& path, const TumCalibration& c) {
-  nlohmann::json json = {{"width", c.camera.width}, {"height", c.camera.height},
-                         {"fx", c.camera.fx},       {"fy", c.camera.fy},
-                         {"cx", c.camera.cx},       {"cy", c.camera.cy},
-                         {"depth_scale", c.depth_scale}};
+  const nlohmann::json json = ToJsonObject(c);
   std::ofstream out(path);
   SLAM_THROW_IF_NOT(InputError, out.good()) << path << ": cannot write calibration";
   out << json.dump(2) << "\n";

@@ -352,6 +352,35 @@ TEST(TumCalibrationFile, DepthScaleOutsideOneToOneHundredThousandIsRefused) {
   }
 }
 
+// calibration.json is written and read through its codec (calibration_json.h):
+// the same text as the hand-written writer made, every key required, unknown
+// keys refused with the file's name.
+TEST(TumCalibrationFile, WrittenTextAndRequiredKeys) {
+  const fs::path root = ProcessTempDir("tum_calibration_text");
+  const std::string path = (root / kCalibrationFileName).string();
+  TumCalibration c;
+  c.camera = PinholeCamera{640, 480, 525.0, 526.5, 319.5, 239.5};
+  c.depth_scale = 1000.0;
+  WriteCalibration(path, c);
+  std::ifstream in(path);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text,
+            "{\n  \"cx\": 319.5,\n  \"cy\": 239.5,\n  \"depth_scale\": 1000.0,\n  \"fx\": 525.0,\n"
+            "  \"fy\": 526.5,\n  \"height\": 480,\n  \"width\": 640\n}\n");
+  const TumCalibration back = ReadCalibration(path);
+  EXPECT_EQ(back.camera.width, 640);
+  EXPECT_EQ(back.camera.fy, 526.5);
+  EXPECT_EQ(back.depth_scale, 1000.0);
+
+  std::ofstream(path) << R"({"width": 640, "height": 480, "fx": 525, "fy": 525, "cx": 319.5,
+                              "cy": 239.5})";
+  EXPECT_EQ(ErrorOf([&] { ReadCalibration(path); }), path + ": missing key 'depth_scale'");
+  std::ofstream(path) << R"({"width": 640, "height": 480, "fx": 525, "fy": 525, "cx": 319.5,
+                              "cy": 239.5, "depth_scale": 1000, "k1": 0.1})";
+  EXPECT_NE(ErrorOf([&] { ReadCalibration(path); }).find(path), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { ReadCalibration(path); }).find("k1"), std::string::npos);
+}
+
 TEST(SyntheticDataset, ManifestCreditsItsAssetsOnlyWhenItHasAny) {
   const fs::path root = ProcessTempDir("tum_synthetic_assets");
   fs::create_directories(root);
