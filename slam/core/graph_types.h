@@ -25,16 +25,8 @@ enum class LinkType : int {
   kPrior = 4,
 };
 
-inline const char* LinkTypeName(LinkType type) {
-  switch (type) {
-    case LinkType::kOdometry: return "odometry";
-    case LinkType::kLoopClosure: return "loop_closure";
-    case LinkType::kProximity: return "proximity";
-    case LinkType::kMerged: return "merged";
-    case LinkType::kPrior: return "prior";
-  }
-  return "unknown";
-}
+// "odometry", "loop_closure", ... (the names of graph_types_json.h).
+const char* LinkTypeName(LinkType type);
 
 // Information matrix order: (x, y, z, roll, pitch, yaw), as in the reference.
 using Information6d = Eigen::Matrix<double, 6, 6>;

@@ -1,5 +1,5 @@
-// JSON names of the link types (slam/core/json_codec.h), as LinkTypeName
-// spells them: "odometry", "loop_closure", "proximity", "merged", "prior".
+// The link types' names (slam/core/json_codec.h), their one spelling, which
+// LinkTypeName returns too: "odometry", "loop_closure", "proximity", "merged", "prior".
 #pragma once
 
 #include <utility>

@@ -1,6 +1,7 @@
 // JSON codecs of the parts of a localization record that are one field per
-// key (slam/core/json_codec.h): its outcome's name, its stage timings and
-// each transform estimation it tried. The record itself is written by
+// key (slam/core/json_codec.h): its outcome's name (the one spelling, which
+// LocalizationOutcomeName returns too), its stage timings and each transform
+// estimation it tried. The record itself is written by
 // LocalizationRecordToJson (record_io.h), which adds the keys a field list
 // cannot say (values null unless the frame re-localized, the pose, the check).
 //   timings:  {"features": 9.1, "lcd": 3.2, "proximity": 0.1, "registration": 4.0, "total": 16.5}

@@ -8,20 +8,11 @@
 #include "slam/core/timer.h"
 #include "slam/map/map_vocabulary.h"
 #include "slam/retrieval/proximity.h"
+#include "slam/engine/localization_record_json.h"
 
 namespace duskmap {
 
-const char* LocalizationOutcomeName(LocalizationOutcome outcome) {
-  switch (outcome) {
-    case LocalizationOutcome::kRelocalized: return "relocalized";
-    case LocalizationOutcome::kBadSignature: return "bad_signature";
-    case LocalizationOutcome::kNoCandidate: return "no_candidate";
-    case LocalizationOutcome::kRegistrationRejected: return "registration_rejected";
-    case LocalizationOutcome::kOdometryCacheWaiting: return "odometry_cache_waiting";
-    case LocalizationOutcome::kOdometryCacheRejected: return "odometry_cache_rejected";
-  }
-  return "unknown";
-}
+const char* LocalizationOutcomeName(LocalizationOutcome outcome) { return JsonEnumName(outcome); }
 
 namespace {
 

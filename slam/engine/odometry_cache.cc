@@ -6,6 +6,7 @@
 #include "slam/core/check.h"
 #include "slam/graph/graph_errors.h"
 #include "slam/graph/pose_graph.h"
+#include "slam/engine/odometry_cache_json.h"
 
 namespace duskmap {
 namespace {
@@ -32,14 +33,7 @@ void OdometryCacheOptions::Check() const {
       << "OdometryCacheOptions.max_iterations: must be >= 1, got " << max_iterations;
 }
 
-const char* CacheValidationName(CacheValidation validation) {
-  switch (validation) {
-    case CacheValidation::kApplied: return "applied";
-    case CacheValidation::kWaiting: return "waiting";
-    case CacheValidation::kRejected: return "rejected";
-  }
-  return "unknown";
-}
+const char* CacheValidationName(CacheValidation validation) { return JsonEnumName(validation); }
 
 OdometryCache::OdometryCache(const OdometryCacheOptions& options) : options_(options) {
   options_.Check();

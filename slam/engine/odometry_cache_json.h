@@ -1,5 +1,5 @@
-// JSON names of the odometry cache's validation results
-// (slam/core/json_codec.h), as CacheValidationName spells them.
+// The odometry cache's validation results' names (slam/core/json_codec.h),
+// their one spelling, which CacheValidationName returns too.
 #pragma once
 
 #include <utility>

@@ -4,6 +4,7 @@
 
 #include "slam/core/check.h"
 #include "slam/core/timer.h"
+#include "slam/registration/transform_estimation_json.h"
 
 namespace duskmap {
 namespace {
@@ -187,22 +188,7 @@ GuidedMatchingOptions RegistrationOptions::GuidedMatching() const {
   return guided;
 }
 
-const char* RegistrationStatusName(RegistrationStatus status) {
-  switch (status) {
-    case RegistrationStatus::kAccepted: return "accepted";
-    case RegistrationStatus::kNoFeatures: return "no_features";
-    case RegistrationStatus::kTooFewMatches: return "too_few_matches";
-    case RegistrationStatus::kPnpFailed: return "pnp_failed";
-    case RegistrationStatus::kTooFewInliers: return "too_few_inliers";
-    case RegistrationStatus::kSecondPassTooFewMatches: return "second_pass_too_few_matches";
-    case RegistrationStatus::kSecondPassPnpFailed: return "second_pass_pnp_failed";
-    case RegistrationStatus::kSecondPassTooFewInliers: return "second_pass_too_few_inliers";
-    case RegistrationStatus::kBundleAdjustmentFailed: return "ba_failed";
-    case RegistrationStatus::kBundleAdjustmentTooFewInliers: return "ba_too_few_inliers";
-    case RegistrationStatus::kVarianceTooHigh: return "variance_too_high";
-  }
-  return "unknown";
-}
+const char* RegistrationStatusName(RegistrationStatus status) { return JsonEnumName(status); }
 
 RegistrationResult EstimateTransform(const RegistrationOptions& options,
                                      const FrameFeatures& map_node,

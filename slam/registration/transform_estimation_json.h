@@ -1,5 +1,5 @@
-// JSON names of the registration statuses (slam/core/json_codec.h), as
-// RegistrationStatusName spells them; the per-frame records write them.
+// The registration statuses' names (slam/core/json_codec.h), their one
+// spelling, which RegistrationStatusName returns too.
 #pragma once
 
 #include <utility>

@@ -1,5 +1,5 @@
-// JSON names of the loop closure detector's statuses (slam/core/json_codec.h),
-// as LcdStatusName spells them; the per-frame records write them.
+// The loop closure detector's statuses' names (slam/core/json_codec.h), their
+// one spelling, which LcdStatusName returns too.
 #pragma once
 
 #include <utility>

@@ -4,20 +4,11 @@
 
 #include "slam/core/check.h"
 #include "slam/core/timer.h"
+#include "slam/retrieval/lcd_result_json.h"
 
 namespace duskmap {
 
-const char* LcdStatusName(LcdStatus status) {
-  switch (status) {
-    case LcdStatus::kAccepted: return "accepted";
-    case LcdStatus::kBelowThreshold: return "below_threshold";
-    case LcdStatus::kRejectedSinglePlace: return "rejected_single_place";
-    case LcdStatus::kRejectedLoopRatio: return "rejected_loop_ratio";
-    case LcdStatus::kBadSignature: return "bad_signature";
-    case LcdStatus::kNoCandidates: return "no_candidates";
-  }
-  return "unknown";
-}
+const char* LcdStatusName(LcdStatus status) { return JsonEnumName(status); }
 
 void LoopClosureOptions::Check() const {
   vocabulary.Check();
