@@ -22,6 +22,8 @@
 // Reading keeps a field's default when its key is absent; a key declared
 // with JsonRequired must be present:
 //       f("name", o.name, JsonRequired{});   // "<where>: missing key 'name'"
+// and a list declared with JsonOmitEmpty is not written when empty:
+//       f("assets", o.assets, JsonOmitEmpty{});
 // A struct's codec lives beside the struct's module
 // (`<module>/<name>_json.h`), so whoever composes the struct composes its codec.
 //
@@ -66,6 +68,11 @@ using JsonDerivedKeys = std::vector<JsonDerivedKey>;
 
 // Marks a key the reader requires (the writer always writes every field).
 struct JsonRequired {};
+
+// Marks a list the writer leaves out when it is empty (a key that files
+// written before the list existed do not have); the reader reads it as any
+// other field, absent = empty.
+struct JsonOmitEmpty {};
 
 namespace json_codec_internal {
 
@@ -209,6 +216,11 @@ class JsonCodecReader {
     (*this)(key, value);
   }
 
+  template <typename T>
+  void operator()(const char* key, T& value, JsonOmitEmpty) {
+    (*this)(key, value);
+  }
+
   // Reads every field of *value that `fields` holds, then rejects the keys
   // no field declared. No Check(): the caller checks the whole struct.
   template <typename T>
@@ -260,6 +272,11 @@ class JsonCodecWriter {
   template <typename T>
   void operator()(const char* key, const T& value, JsonRequired) {
     (*this)(key, value);
+  }
+
+  template <typename T>
+  void operator()(const char* key, const T& value, JsonOmitEmpty) {
+    if (!value.empty()) (*this)(key, value);
   }
 
   template <typename T>

@@ -8,8 +8,10 @@
 #include <nlohmann/json.hpp>
 
 #include "slam/core/check.h"
+#include "slam/core/json_codec.h"
 #include "slam/core/json_fields.h"
 #include "slam/io/path_status.h"
+#include "slam/io/synthetic_dataset_json.h"
 #include "slam/io/tum_dataset.h"
 
 namespace duskmap {
@@ -58,19 +60,9 @@ bool IsFolderInsideDataset(const std::string& folder) {
 }
 
 void WriteManifest(const std::string& dataset_path, const DatasetManifest& manifest) {
-  nlohmann::json sessions = nlohmann::json::array();
-  for (const ManifestSession& s : manifest.sessions) {
-    sessions.push_back(
-        {{"name", s.name}, {"folder", s.folder}, {"clock_time", s.clock_time}, {"role", s.role}});
-  }
-  nlohmann::json json = {{"format", kSyntheticFormat}, {"version", 1}, {"sessions", sessions}};
-  if (!manifest.assets.empty()) {
-    nlohmann::json assets = nlohmann::json::array();
-    for (const ManifestAsset& a : manifest.assets) {
-      assets.push_back({{"name", a.name}, {"source", a.source}, {"creator", a.creator}, {"license", a.license}});
-    }
-    json["assets"] = assets;
-  }
+  nlohmann::json json = ToJsonObject(manifest);
+  json["format"] = kSyntheticFormat;
+  json["version"] = 1;
   const std::string path = dataset_path + "/" + kManifestFileName;
   std::ofstream out(path);
   SLAM_THROW_IF_NOT(InputError, out.good()) << path << ": cannot write manifest";
@@ -93,42 +85,18 @@ DatasetManifest ReadManifest(const std::string& dataset_path) {
     f.ReadRequired("version", &version);
     SLAM_THROW_IF_NOT(InputError, format == kSyntheticFormat && version == 1)
         << path << ": unsupported format '" << format << "' version " << version;
-    const nlohmann::json& sessions = f.Raw("sessions");
-    SLAM_THROW_IF_NOT(InputError, sessions.is_array() && !sessions.empty())
-        << path << ": 'sessions' must be a non-empty array";
-    std::set<std::string> names;
-    for (size_t i = 0; i < sessions.size(); ++i) {
-      JsonFields s(sessions[i], path + ":sessions[" + std::to_string(i) + "]");
-      ManifestSession session;
-      s.ReadRequired("name", &session.name);
-      s.ReadRequired("folder", &session.folder);
-      s.Read("clock_time", &session.clock_time);
-      s.Read("role", &session.role);
-      s.RejectUnknown();
-      SLAM_THROW_IF_NOT(InputError, IsFolderInsideDataset(session.folder))
-          << path << ": session '" << session.name << "' folder '" << session.folder
-          << "' must be a relative path inside the dataset (no '..', not absolute)";
-      SLAM_THROW_IF_NOT(InputError, names.insert(session.name).second)
-          << path << ": duplicate session '" << session.name << "'";
-      manifest.sessions.push_back(session);
-    }
-    if (f.Has("assets")) {
-      const nlohmann::json& assets = f.Raw("assets");
-      SLAM_THROW_IF_NOT(InputError, assets.is_array()) << path << ": 'assets' must be an array";
-      for (size_t i = 0; i < assets.size(); ++i) {
-        JsonFields a(assets[i], path + ":assets[" + std::to_string(i) + "]");
-        ManifestAsset asset;
-        a.ReadRequired("name", &asset.name);
-        a.ReadRequired("source", &asset.source);
-        a.Read("creator", &asset.creator);
-        a.ReadRequired("license", &asset.license);
-        a.RejectUnknown();
-        manifest.assets.push_back(asset);
-      }
-    }
-    f.RejectUnknown();
+    JsonCodecReader::ReadFields(f, &manifest);
   } catch (const ConfigError& e) {
     throw InputError(e.what());
+  }
+  SLAM_THROW_IF_NOT(InputError, !manifest.sessions.empty()) << path << ": 'sessions' must be a non-empty array";
+  std::set<std::string> names;
+  for (const ManifestSession& session : manifest.sessions) {
+    SLAM_THROW_IF_NOT(InputError, IsFolderInsideDataset(session.folder))
+        << path << ": session '" << session.name << "' folder '" << session.folder
+        << "' must be a relative path inside the dataset (no '..', not absolute)";
+    SLAM_THROW_IF_NOT(InputError, names.insert(session.name).second)
+        << path << ": duplicate session '" << session.name << "'";
   }
   return manifest;
 }

@@ -45,6 +45,12 @@ struct List {
   std::optional<Inner> inner;
 };
 
+// A list added to a file format later: left out when empty.
+struct Credits {
+  std::vector<Item> items;
+  std::vector<std::string> names;
+};
+
 }  // namespace
 
 template <>
@@ -84,6 +90,15 @@ struct JsonCodec<Item> {
     f("colour", o.colour);
     f("weight", o.weight);
     f("at", o.at);
+  }
+};
+
+template <>
+struct JsonCodec<Credits> {
+  template <typename F, typename O>
+  static void Visit(F& f, O& o) {
+    f("items", o.items, JsonOmitEmpty{});
+    f("names", o.names, JsonOmitEmpty{});
   }
 };
 
@@ -199,6 +214,21 @@ TEST(JsonCodec, ListAndRequiredErrorsNameTheFullPath) {
             "l.json.items[0]: expected a JSON object, got number");
   EXPECT_EQ(ErrorOf([] { ReadList(R"({"inner": {"cuont": 1}})"); }),
             "l.json.inner: unknown key 'cuont'");
+}
+
+TEST(JsonCodec, ListsMarkedOmitEmptyAreLeftOutWhenEmpty) {
+  Credits credits;
+  EXPECT_EQ(ToJsonObject(credits).dump(), "{}");
+  credits.names = {"a"};
+  EXPECT_EQ(ToJsonObject(credits).dump(), R"({"names":["a"]})");
+  credits.items = {Item{"x", std::nullopt, 2.0, {0.0, 0.0}}};
+  const nlohmann::json json = ToJsonObject(credits);
+  EXPECT_EQ(json.dump(), R"({"items":[{"at":[0.0,0.0],"colour":null,"name":"x","weight":2.0}],"names":["a"]})");
+  const Credits back = ReadJsonOptions<Credits>(json, "back");
+  EXPECT_EQ(ToJsonObject(back), json);
+  EXPECT_TRUE(ReadJsonOptions<Credits>(nlohmann::json::parse("{}"), "empty").items.empty());
+  EXPECT_EQ(testing::ErrorOf([] { ReadJsonOptions<Credits>(nlohmann::json::parse(R"({"items": [{}]})"), "c"); }),
+            "c.items[0]: missing key 'name'");
 }
 
 }  // namespace

@@ -399,6 +399,45 @@ TEST(SyntheticDataset, ManifestCreditsItsAssetsOnlyWhenItHasAny) {
   EXPECT_EQ(manifest.assets[0].license, "Public domain");
 }
 
+// The text the hand-written writer gave before the manifest had a codec
+// (datasets' checksums depend on it), and strict reading.
+TEST(SyntheticDataset, ManifestIsWrittenAsBeforeAndReadStrictly) {
+  const fs::path root = ProcessTempDir("tum_synthetic_text");
+  fs::create_directories(root);
+  const std::string path = (root / kManifestFileName).string();
+  const auto text = [&] {
+    std::ifstream in(path);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  WriteManifest(root.string(), {{{"1", "1", "16:46", "mapping"}}, {}});
+  EXPECT_EQ(text(),
+            "{\n  \"format\": \"duskmap-synthetic\",\n  \"sessions\": [\n    {\n      \"clock_time\": \"16:46\",\n"
+            "      \"folder\": \"1\",\n      \"name\": \"1\",\n      \"role\": \"mapping\"\n    }\n  ],\n"
+            "  \"version\": 1\n}\n");
+  WriteManifest(root.string(), {{{"A", "A", "16:51", "localization"}}, {{"Bed", "c.sh3f#bed1", "", "CC0"}}});
+  EXPECT_EQ(text(),
+            "{\n  \"assets\": [\n    {\n      \"creator\": \"\",\n      \"license\": \"CC0\",\n"
+            "      \"name\": \"Bed\",\n      \"source\": \"c.sh3f#bed1\"\n    }\n  ],\n"
+            "  \"format\": \"duskmap-synthetic\",\n  \"sessions\": [\n    {\n      \"clock_time\": \"16:51\",\n"
+            "      \"folder\": \"A\",\n      \"name\": \"A\",\n      \"role\": \"localization\"\n    }\n  ],\n"
+            "  \"version\": 1\n}\n");
+  const auto error_for = [&](const std::string& json) {
+    std::ofstream(path) << json;
+    return ErrorOf([&] { ReadManifest(root.string()); });
+  };
+  const std::string head = R"({"format": "duskmap-synthetic", "version": 1, )";
+  EXPECT_EQ(error_for(head + R"("sessions": [{"name": "1", "folder": "1", "colour": 1}]})"),
+            path + ".sessions[0]: unknown key 'colour'");
+  EXPECT_EQ(error_for(head + R"("sessions": [{"folder": "1"}]})"), path + ".sessions[0]: missing key 'name'");
+  EXPECT_EQ(error_for(head + R"("sessions": []})"), path + ": 'sessions' must be a non-empty array");
+  EXPECT_EQ(error_for(head + R"("sessions": [{"name": "1", "folder": "1"}, {"name": "1", "folder": "2"}]})"),
+            path + ": duplicate session '1'");
+  EXPECT_EQ(error_for(head + R"("sessions": [{"name": "1", "folder": "1"}], "assets": [{"name": "x"}]})"),
+            path + ".assets[0]: missing key 'source'");
+  EXPECT_EQ(error_for(R"({"format": "other", "version": 1, "sessions": []})"),
+            path + ": unsupported format 'other' version 1");
+}
+
 TEST(SyntheticDataset, ManifestListsSessions) {
   const fs::path root = ProcessTempDir("tum_synthetic");
   WriteSession(root / "1", MakeFrames(2));
