@@ -131,7 +131,7 @@ void AddKitchen(SceneBuilder& b, const ApartmentOptions& options) {
   const cv::Vec3f cabinet(0.3f, 0.45f, 0.55f);
   b.AddBoxWithFront({9.4, 0.3, 0.0}, {10.0, 4.2, 0.86}, {-1, 0}, room, TextureKind::kWood, cabinet,
                     TextureKind::kCabinet, cabinet);
-  b.AddBox({9.38, 0.3, 0.86}, {10.0, 4.2, 0.9}, room, TextureKind::kWood, {0.12f, 0.13f, 0.14f});
+  b.AddBox({9.38, 0.3, 0.86}, {10.0, 4.2, 0.9}, room, TextureKind::kCounter, {0.12f, 0.13f, 0.14f});
   b.AddBoxWithFront({9.65, 0.3, 1.5}, {10.0, 4.2, 2.2}, {-1, 0}, room, TextureKind::kWood, cabinet,
                     TextureKind::kCabinet, cabinet);
   b.AddWallItem(false, 10.0, {-1, 0}, 2.25, 3.9, 0.9, 1.5, room, TextureKind::kTiles, {0.8f, 0.8f, 0.78f});
@@ -307,6 +307,9 @@ void ApartmentOptions::Check() const {
   SLAM_THROW_IF_NOT(ConfigError, relief_scale >= 0.0 && relief_scale <= 10.0)
       << "scene.relief_scale must be in [0, 10], got " << relief_scale;
   furniture.Check();
+  for (size_t i = 0; i < photo_materials.size(); ++i) {
+    photo_materials[i].Check("scene.photo_materials[" + std::to_string(i) + "]");
+  }
   const bool time_ok = living_lamp_on_from.size() == 5 && living_lamp_on_from[2] == ':';
   SLAM_THROW_IF_NOT(ConfigError, time_ok)
       << "scene.living_lamp_on_from must be \"HH:MM\", got \"" << living_lamp_on_from << "\"";
@@ -318,7 +321,10 @@ Scene BuildApartment(const ApartmentOptions& options) {
                       options.textures_dir.empty() ? std::vector<cv::Mat>()
                                                    : LoadUserTextures(options.textures_dir),
                       options.wall_height_m, options.relief_scale);
+  LoadedPhotoMaterials photos = LoadPhotoMaterials(options.photo_materials, options.furniture.catalog);
+  builder.SetPhotoMaterials(std::move(photos.materials));
   Scene& s = builder.scene();
+  s.material_credits = std::move(photos.credits);
   s.room_names = {"living room", "kitchen", "corridor", "bedroom"};
   AddLivingRoom(builder, options);
   AddKitchen(builder, options);

@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include "slam/synthetic/furniture_layout.h"
+#include "slam/synthetic/photo_materials.h"
 #include "slam/synthetic/scene.h"
 
 namespace duskmap {
@@ -39,6 +40,10 @@ struct ApartmentOptions {
   double relief_scale = 1.0;
   // Catalog furniture (furniture_layout.h); none by default.
   FurnitureOptions furniture;
+  // Photographic materials from furniture.catalog's images (wood floors,
+  // tiles, the kitchen counter, furniture wood, fabric; photo_materials.h);
+  // none by default: every surface procedural.
+  std::vector<PhotoMaterialSpec> photo_materials;
   // The furniture drawn as textured boxes: the sofa, TV stand, bookshelves,
   // dining and kitchen tables with their chairs, the bed, bedside table,
   // wardrobe and dresser. False when catalog pieces stand in for them; the

@@ -150,6 +150,9 @@ GenerateSummary GenerateDataset(const GeneratorConfig& config, const GenerateOpt
     if (!credited.insert(source).second) continue;
     manifest.assets.push_back({mesh.name, source, mesh.creator, mesh.license});
   }
+  for (const AssetCredit& credit : scene.material_credits) {
+    manifest.assets.push_back({credit.name, credit.source, credit.creator, credit.license});
+  }
   WriteManifest(staged.staging_path(), manifest);
   if (options.preview) WritePreviews(scene, previews, staged.staging_path() + "/previews");
   staged.Commit();

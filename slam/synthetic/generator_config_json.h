@@ -29,6 +29,17 @@ struct JsonCodec<FurniturePiece> {
 };
 
 template <>
+struct JsonCodec<PhotoMaterialSpec> {
+  template <typename F, typename O>
+  static void Visit(F& f, O& o) {
+    f("surface", o.surface, JsonRequired{});
+    f("image", o.image, JsonRequired{});
+    f("width_m", o.width_m);
+    f("texel_m", o.texel_m);
+  }
+};
+
+template <>
 struct JsonCodec<FurnitureOptions> {
   template <typename F, typename O>
   static void Visit(F& f, O& o) {
@@ -54,6 +65,7 @@ struct JsonCodec<ApartmentOptions> {
     f("relief_scale", o.relief_scale);
     f("box_furniture", o.box_furniture);
     f("furniture", o.furniture);
+    f("photo_materials", o.photo_materials);
   }
 };
 

@@ -59,6 +59,15 @@ struct Lamp {
   std::string on_from;         // local "HH:MM" from which it is on; empty = always on
 };
 
+// A third-party file the scene shows besides its meshes (a photographic
+// material), as the dataset's manifest credits it.
+struct AssetCredit {
+  std::string name;    // "american_oak.jpg"
+  std::string source;  // "BlendSwap-CC-0.sh3f#blendswap-cc-0/lowerCabinet/american_oak.jpg"
+  std::string creator;
+  std::string license;
+};
+
 struct Scene {
   std::vector<std::string> room_names;
   std::vector<Quad> quads;
@@ -68,6 +77,7 @@ struct Scene {
   // SetMeshes.
   std::vector<SceneMesh> meshes;
   TriangleBvh mesh_occluders;
+  std::vector<AssetCredit> material_credits;  // photographic materials (photo_materials.h)
   Eigen::Vector2d min_corner_xy = Eigen::Vector2d::Zero();  // footprint, metres
   Eigen::Vector2d max_corner_xy = Eigen::Vector2d::Zero();
   int docking_picture = -1;           // quad index of the docking picture

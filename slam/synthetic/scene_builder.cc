@@ -78,7 +78,7 @@ int SceneBuilder::AddQuad(const Eigen::Vector3d& origin, const Eigen::Vector3d& 
   // side: seen from the front, u points to the viewer's left. Mirroring the
   // texture makes pictures, posters and text read the right way round; the
   // relief is mirrored with it before its slopes are taken along u and v.
-  const SurfaceTexture texture = MakeTexture(request, user_images_);
+  const SurfaceTexture texture = MakeTexture(request, user_images_, FindPhotoMaterial(photo_materials_, kind));
   cv::flip(texture.albedo, q.albedo, 1);
   if (!texture.height_m.empty()) {
     cv::Mat height_m;

@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include "slam/synthetic/photo_materials.h"
 #include "slam/synthetic/scene.h"
 #include "slam/synthetic/textures.h"
 
@@ -45,6 +46,9 @@ class SceneBuilder {
                double relief_scale = 0.0);
 
   Scene& scene() { return scene_; }
+  // Quads added from now on whose kind has a material here draw it
+  // (photo_materials.h) instead of the procedural texture.
+  void SetPhotoMaterials(std::vector<PhotoMaterial> materials) { photo_materials_ = std::move(materials); }
   double wall_height_m() const { return wall_height_m_; }
 
   // A textured rectangle origin + s u + t v, s in [0, su], t in [0, sv];
@@ -137,6 +141,7 @@ class SceneBuilder {
 
   uint64_t seed_;
   std::vector<cv::Mat> user_images_;
+  std::vector<PhotoMaterial> photo_materials_;
   double wall_height_m_;
   double relief_scale_;
   Scene scene_;

@@ -10,6 +10,7 @@
 #include "slam/core/check.h"
 #include "slam/core/random.h"
 #include "slam/io/image_header.h"
+#include "slam/synthetic/photo_materials.h"
 #include "slam/synthetic/relief.h"
 
 namespace duskmap {
@@ -350,6 +351,7 @@ double TexelSizeM(TextureKind kind) {
     case TextureKind::kCeiling: return 0.04;
     case TextureKind::kWoodFloor: return 0.008;
     case TextureKind::kWood: return 0.008;
+    case TextureKind::kCounter: return 0.008;
     case TextureKind::kTiles: return 0.008;
     case TextureKind::kFabric: return 0.008;
     case TextureKind::kRug: return 0.008;
@@ -387,7 +389,8 @@ cv::Mat MakeAlbedo(const TextureRequest& request, const std::vector<cv::Mat>& us
     case TextureKind::kCeiling:
       return Modulated(size, base, ValueNoise(size, 10.0, rng), 0.02f);
     case TextureKind::kWoodFloor:
-    case TextureKind::kWood: {
+    case TextureKind::kWood:
+    case TextureKind::kCounter: {
       const bool floor = request.kind == TextureKind::kWoodFloor;
       const int plank = floor ? 18 : 40;  // texels across a plank
       cv::Mat grain = ValueNoise(cv::Size(size.width, std::max(2, size.height / 12)), 6.0, rng);
@@ -505,7 +508,8 @@ void AddMaterialNoise(TextureKind kind, ReliefCanvas& relief, cv::RNG& rng) {
       relief.AddNoise(0.0004, 0.06, rng);
       break;
     case TextureKind::kWoodFloor:
-    case TextureKind::kWood: relief.AddNoise(0.0003, 0.016, rng); break;  // brushed grain
+    case TextureKind::kWood:
+    case TextureKind::kCounter: relief.AddNoise(0.0003, 0.016, rng); break;  // brushed grain
     case TextureKind::kTiles: relief.AddNoise(0.0008, 0.05, rng); break;  // uneven glaze
     case TextureKind::kFabric:
       relief.AddNoise(0.0015, 0.012, rng);  // weave
@@ -525,13 +529,16 @@ void AddMaterialNoise(TextureKind kind, ReliefCanvas& relief, cv::RNG& rng) {
 
 }  // namespace
 
-SurfaceTexture MakeTexture(const TextureRequest& request, const std::vector<cv::Mat>& user_images) {
-  const double texel = TexelSizeM(request.kind);
+SurfaceTexture MakeTexture(const TextureRequest& request, const std::vector<cv::Mat>& user_images,
+                           const PhotoMaterial* photo) {
+  SLAM_CHECK(photo == nullptr || photo->kind == request.kind);
+  const double texel = photo != nullptr ? photo->texel_m : TexelSizeM(request.kind);
   const cv::Size size(Texels(request.size_u_m, texel), Texels(request.size_v_m, texel));
   const bool relief_on = request.relief_scale > 0.0 && HasRelief(request.kind);
   ReliefCanvas relief = relief_on ? ReliefCanvas(size, texel) : ReliefCanvas();
   SurfaceTexture out;
-  out.albedo = MakeAlbedo(request, user_images, size, relief);
+  out.albedo = photo != nullptr ? PhotoAlbedo(*photo, request, size, relief)
+                                : MakeAlbedo(request, user_images, size, relief);
   if (relief_on) {
     cv::RNG relief_rng(DeriveSeed(request.seed, 0x72656c696566ull) | 1);  // its own stream: "relief"
     AddMaterialNoise(request.kind, relief, relief_rng);

@@ -11,11 +11,14 @@
 
 namespace duskmap {
 
+struct PhotoMaterial;  // photo_materials.h
+
 enum class TextureKind {
   kPaint,     // plain wall paint with subtle low-frequency noise (weakly textured)
   kCeiling,   // nearly uniform white
   kWoodFloor, // planks with grain
   kWood,      // furniture wood
+  kCounter,   // kitchen worktop: drawn as kWood unless a photo material replaces it
   kTiles,     // square tiles with grout lines
   kFabric,    // woven fabric
   kRug,       // patterned rug
@@ -55,11 +58,14 @@ struct SurfaceTexture {
 double TexelSizeM(TextureKind kind);
 
 // Generates the texture. `user_images` (optional) replaces the content of
-// pictures and posters with the user's images, chosen by seed. The albedo
+// pictures and posters with the user's images, chosen by seed. `photo`
+// (optional, of the request's kind) draws the albedo from a photographic
+// material at its own texel size (photo_materials.h). The albedo
 // does not depend on relief_scale (the relief draws from its own stream); the
 // height is empty for flat kinds (prints, screens, windows, lamp shades) and
 // for relief_scale 0.
-SurfaceTexture MakeTexture(const TextureRequest& request, const std::vector<cv::Mat>& user_images);
+SurfaceTexture MakeTexture(const TextureRequest& request, const std::vector<cv::Mat>& user_images,
+                           const PhotoMaterial* photo = nullptr);
 
 // Smooth value noise in [-1, 1]: a coarse random grid of one cell per
 // `cell_texels` texels, upsampled bicubically.
