@@ -134,6 +134,9 @@ void LightingOptions::Check() const {
   SLAM_THROW_IF_NOT(ConfigError, site.day_of_year >= 1 && site.day_of_year <= 366)
       << "lighting.day_of_year must be in [1, 366], got " << site.day_of_year;
   SLAM_THROW_IF_NOT(ConfigError, sun_illuminance_lux > 0.0) << "lighting.sun_illuminance_lux must be > 0";
+  SLAM_THROW_IF_NOT(ConfigError, std::isfinite(horizon_elevation_deg) && horizon_elevation_deg >= -5.0 &&
+                                     horizon_elevation_deg <= 45.0)
+      << "lighting.horizon_elevation_deg must be in [-5, 45], got " << horizon_elevation_deg;
   SLAM_THROW_IF_NOT(ConfigError, glass_transmission > 0.0 && glass_transmission <= 1.0)
       << "lighting.glass_transmission must be in (0, 1], got " << glass_transmission;
   SLAM_THROW_IF_NOT(ConfigError, lamp_color_temperature_k >= 1000 && lamp_color_temperature_k <= 12000)

@@ -1,9 +1,10 @@
 #include "slam/synthetic/lighting.h"
 
-#include "slam/core/check.h"
+#include <cmath>
 
 #include <gtest/gtest.h>
 
+#include "slam/core/check.h"
 #include "slam/synthetic/apartment.h"
 #include "slam/synthetic/generator_config.h"
 
@@ -208,6 +209,16 @@ TEST(ParseClockTime, RejectsMalformed) {
   EXPECT_THROW(ParseClockTime("5:54", "t"), ConfigError);
   EXPECT_THROW(ParseClockTime("25:00", "t"), ConfigError);
   EXPECT_THROW(ParseClockTime("17:5x", "t"), ConfigError);
+}
+
+TEST(LightingOptions, TheHorizonIsAnElevationABuildingCouldHave) {
+  LightingOptions options;
+  options.horizon_elevation_deg = 14.0;
+  EXPECT_NO_THROW(options.Check());
+  for (const double bad : {-6.0, 46.0, std::nan("")}) {
+    options.horizon_elevation_deg = bad;
+    EXPECT_THROW(options.Check(), ConfigError) << bad;
+  }
 }
 
 }  // namespace
