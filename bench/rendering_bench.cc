@@ -30,22 +30,21 @@ Fixture& Shared() {
   return fixture;
 }
 
-// The apartment furnished with catalog models
-// (configs/sunset_apartment_furnished.json); null when the catalog is not
-// installed.
+// The default apartment, furnished with catalog models
+// (configs/sunset_apartment.json); null when the catalog is not installed.
 const Fixture* Furnished() {
   static const std::unique_ptr<Fixture> fixture = []() -> std::unique_ptr<Fixture> {
     if (!std::filesystem::exists(DefaultFurnitureCatalogPath())) return nullptr;
     auto f = std::make_unique<Fixture>();
-    f->config = ReadGeneratorConfig(std::string(DUSKMAP_SOURCE_DIR) + "/configs/sunset_apartment_furnished.json");
+    f->config = ReadGeneratorConfig(std::string(DUSKMAP_SOURCE_DIR) + "/configs/sunset_apartment.json");
     f->scene = BuildApartment(f->config.scene);
     return f;
   }();
   return fixture.get();
 }
 
-// Argument: 0 = the default apartment (box furniture), 1 = furnished with
-// catalog meshes.
+// Argument: 0 = the box-furniture apartment (configs/sunset_apartment_boxes.json's
+// scene), 1 = the default, furnished with catalog meshes.
 void BM_RenderFrame640x480(benchmark::State& state) {
   const Fixture* furnished = state.range(0) ? Furnished() : nullptr;
   if (state.range(0) && furnished == nullptr) {

@@ -49,7 +49,7 @@ class RunCli : public ::testing::Test {
   static void SetUpTestSuite() {
     dir_ = duskmap::testing::ProcessTempDir("run_cli");
     nlohmann::json config = nlohmann::json::parse(
-        std::ifstream(std::string(DUSKMAP_SOURCE_DIR) + "/configs/sunset_apartment.json"));
+        std::ifstream(std::string(DUSKMAP_SOURCE_DIR) + "/configs/sunset_apartment_boxes.json"));
     config["max_frames"] = 10;
     config["sessions"] = nlohmann::json::array(
         {{{"name", "1"}, {"clock_time", "16:46"}, {"role", "mapping"}},

@@ -147,7 +147,7 @@ TEST(FurnishedApartment, TheShippedConfigBuildsWithTheInstalledCatalog) {
     GTEST_SKIP() << "sweethome3d-furniture not installed: run scripts/setup.sh";
   }
   const GeneratorConfig config =
-      ReadGeneratorConfig(std::string(DUSKMAP_SOURCE_DIR) + "/configs/sunset_apartment_furnished.json");
+      ReadGeneratorConfig(std::string(DUSKMAP_SOURCE_DIR) + "/configs/sunset_apartment.json");
   EXPECT_FALSE(config.scene.box_furniture);
   const Scene scene = BuildApartment(config.scene);
   EXPECT_EQ(scene.meshes.size(), config.scene.furniture.pieces.size());

@@ -104,11 +104,12 @@ TEST(ReadGeneratorConfig, InconsistentValuesAreRejected) {
 // overrides are one on their own) loads.
 TEST(ReadGeneratorConfig, EveryShippedGeneratorConfigLoads) {
   const std::string configs = std::string(DUSKMAP_SOURCE_DIR) + "/configs/";
-  // Every piece the furnished config lists is read.
-  const std::string furnished = configs + "sunset_apartment_furnished.json";
+  // Every piece the default (furnished) config lists is read.
+  const std::string furnished = configs + "sunset_apartment.json";
   const size_t listed = ReadJsonFile(furnished)["scene"]["furniture"]["pieces"].size();
   EXPECT_GE(listed, 15u);
   EXPECT_EQ(ReadGeneratorConfig(furnished).scene.furniture.pieces.size(), listed);
+  EXPECT_TRUE(ReadGeneratorConfig(configs + "sunset_apartment_boxes.json").scene.box_furniture);
   const GeneratorConfig quick = ReadGeneratorConfig(configs + "quick/dataset_overrides.json");
   EXPECT_EQ(quick.camera.width, 480);
   EXPECT_EQ(quick.route.frame_rate_hz, 0.5);

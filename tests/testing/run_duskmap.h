@@ -31,13 +31,13 @@ inline CliResult RunDuskmap(const std::string& args, const std::string& prefix =
   return result;
 }
 
-// Generates the default apartment (configs/sunset_apartment.json) with
+// Generates the box-furniture apartment (configs/sunset_apartment_boxes.json) with
 // `max_frames` frames per session and the given sessions (objects with name,
 // clock_time, role) into `dir`/data, through `duskmap generate`.
 inline CliResult GenerateSmallApartment(const std::string& dir, int max_frames,
                                         const nlohmann::json& sessions) {
   nlohmann::json config = nlohmann::json::parse(
-      std::ifstream(std::string(DUSKMAP_SOURCE_DIR) + "/configs/sunset_apartment.json"));
+      std::ifstream(std::string(DUSKMAP_SOURCE_DIR) + "/configs/sunset_apartment_boxes.json"));
   config["max_frames"] = max_frames;
   config["sessions"] = sessions;
   std::ofstream(dir + "/gen.json") << config.dump();
