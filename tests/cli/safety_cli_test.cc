@@ -59,16 +59,12 @@ class SafetyCli : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     dir_ = duskmap::testing::ProcessTempDir("safety_cli");
-    nlohmann::json config = nlohmann::json::parse(
-        std::ifstream(std::string(DUSKMAP_SOURCE_DIR) + "/configs/sunset_apartment_boxes.json"));
-    config["max_frames"] = 6;
-    config["sessions"] = nlohmann::json::array(
-        {{{"name", "1"}, {"clock_time", "16:46"}, {"role", "mapping"}},
-         {{"name", "2"}, {"clock_time", "17:27"}, {"role", "mapping"}},
-         {{"name", "A"}, {"clock_time", "16:51"}, {"role", "localization"}}});
-    std::ofstream(dir_ / "gen.json") << config.dump();
-    const Result generated = RunDuskmap("generate --config " + (dir_ / "gen.json").string() +
-                                        " --output " + (dir_ / "data").string());
+    const Result generated = duskmap::testing::GenerateSmallApartment(
+        dir_.string(), 6,
+        nlohmann::json::array(
+            {{{"name", "1"}, {"clock_time", "16:46"}, {"role", "mapping"}},
+             {{"name", "2"}, {"clock_time", "17:27"}, {"role", "mapping"}},
+             {{"name", "A"}, {"clock_time", "16:51"}, {"role", "localization"}}}));
     ASSERT_EQ(generated.exit_code, 0) << generated.output;
     WriteExperiment("experiment.json", Experiment());
     const Result map = RunDuskmap("map --dataset " + Data() + " --sessions 1 --feature orb --output " +
