@@ -94,6 +94,25 @@ NightMinusDay NightDay(const ReportTable* relocalization, const RankAgreement& r
   return result;
 }
 
+std::vector<RowSignedDeviation> SingleMapRows(const ReportTable* relocalization, const RankAgreement& ranking) {
+  std::vector<RowSignedDeviation> rows;
+  for (const std::string& row : SingleSessionRows(relocalization)) {
+    RowSignedDeviation deviation;
+    deviation.row = row;
+    double sum = 0.0;
+    for (const std::string& feature : ranking.features) {
+      const auto measured = CellValue(relocalization, row, feature, TableSide::kMeasured);
+      const auto paper = CellValue(relocalization, row, feature, TableSide::kPaper);
+      if (!measured || !paper) continue;
+      sum += *measured - *paper;
+      ++deviation.features;
+    }
+    if (deviation.features > 0) deviation.mean_pts = sum / deviation.features;
+    rows.push_back(deviation);
+  }
+  return rows;
+}
+
 std::vector<FeatureRatio> FeatureRatios(const ReportTable* timing) {
   std::vector<FeatureRatio> ratios;
   if (timing == nullptr || !timing->HasRow(kRowFeaturesPerFrame)) return ratios;
@@ -197,6 +216,7 @@ AgreementReport ComputeAgreement(const std::vector<ReportTable>& tables,
   }
   agreement.ranking = Ranking(relocalization);
   agreement.night_minus_day = NightDay(relocalization, agreement.ranking);
+  agreement.single_map_rows = SingleMapRows(relocalization, agreement.ranking);
   agreement.features_per_frame = FeatureRatios(FindTable(tables, kTableTiming));
   agreement.findings = CheckPaperFindings(tables, single_maps, paper.Findings());
   return agreement;
@@ -235,6 +255,14 @@ std::string AgreementToMarkdown(const AgreementReport& agreement) {
         << ", cumulative re-localization, mean over the ranked features): "
         << (n.measured_pts ? FormatSigned(*n.measured_pts, 1) : "–") << " points (paper "
         << (n.paper_pts ? FormatSigned(*n.paper_pts, 1) : "–") << ")\n\n";
+  }
+  if (!agreement.single_map_rows.empty()) {
+    out << "**Single-session maps, signed deviation per map** (measured − paper, cumulative "
+           "re-localization, mean over the ranked features, points):";
+    for (const RowSignedDeviation& row : agreement.single_map_rows) {
+      out << " " << Cell(row.row) << " " << (row.mean_pts ? FormatSigned(*row.mean_pts, 1) : "–");
+    }
+    out << "\n\n";
   }
   if (!agreement.features_per_frame.empty()) {
     out << "**Features per frame, measured / paper**:";
@@ -277,6 +305,11 @@ nlohmann::json AgreementToJson(const AgreementReport& agreement) {
                              {"day_row", n.day_row},
                              {"measured_pts", OptionalJson(n.measured_pts)},
                              {"paper_pts", OptionalJson(n.paper_pts)}};
+  json["single_map_rows"] = nlohmann::json::array();
+  for (const RowSignedDeviation& row : agreement.single_map_rows) {
+    json["single_map_rows"].push_back(
+        {{"row", row.row}, {"mean_signed_deviation_pts", OptionalJson(row.mean_pts)}, {"features", row.features}});
+  }
   json["features_per_frame"] = nlohmann::json::array();
   for (const FeatureRatio& f : agreement.features_per_frame) {
     json["features_per_frame"].push_back(

@@ -60,10 +60,20 @@ struct NightMinusDay {
   std::optional<double> paper_pts;
 };
 
+// One single-session map's row, measured minus paper, averaged over the
+// ranked features: where a calibration stands map by map (the mean absolute
+// deviation hides a day map that is too good behind a night map too weak).
+struct RowSignedDeviation {
+  std::string row;
+  std::optional<double> mean_pts;  // nullopt when no ranked feature has both values
+  int features = 0;                // the ranked features with both values
+};
+
 struct AgreementReport {
   std::vector<TableDeviation> deviations;
   RankAgreement ranking;
   NightMinusDay night_minus_day;
+  std::vector<RowSignedDeviation> single_map_rows;  // in the table's row order
   std::vector<FeatureRatio> features_per_frame;
   std::vector<FindingCheck> findings;
 

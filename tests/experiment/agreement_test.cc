@@ -98,6 +98,28 @@ TEST(ComputeAgreement, RankingAndNightMinusDay) {
   EXPECT_NEAR(*agreement.night_minus_day.paper_pts, 6.0, 1e-12);
 }
 
+TEST(ComputeAgreement, SignedDeviationPerSingleSessionMap) {
+  ReportTable table = Relocalization();
+  table.SetMeasured("2", "SU", 90);  // paper 80: map 2 is now +10, +5, -2
+  table.SetMeasured("3", "SI", 80);  // paper 72: map 3 is -10, +8, -2
+  const AgreementReport agreement = ComputeAgreement({table}, Matrix(true), Paper({}));
+  ASSERT_EQ(agreement.single_map_rows.size(), 3u);  // the multi-session rows are not single maps
+  EXPECT_EQ(agreement.single_map_rows[0].row, "1");
+  EXPECT_NEAR(*agreement.single_map_rows[0].mean_pts, (-10.0 + 5.0 - 2.0) / 3.0, 1e-12);
+  EXPECT_EQ(agreement.single_map_rows[0].features, 3);
+  EXPECT_NEAR(*agreement.single_map_rows[1].mean_pts, (10.0 + 5.0 - 2.0) / 3.0, 1e-12);
+  EXPECT_EQ(agreement.single_map_rows[2].features, 3);  // OR has no paper values: not ranked
+  EXPECT_NEAR(*agreement.single_map_rows[2].mean_pts, (-10.0 + 8.0 - 2.0) / 3.0, 1e-12);
+  const std::string markdown = AgreementToMarkdown(agreement);
+  EXPECT_NE(markdown.find("signed deviation per map** (measured − paper, cumulative re-localization, mean "
+                          "over the ranked features, points): 1 -2.3 2 +4.3 3 -1.3\n"),
+            std::string::npos)
+      << markdown;
+  const nlohmann::json json = AgreementToJson(agreement);
+  EXPECT_EQ(json["single_map_rows"][1]["row"], "2");
+  EXPECT_NEAR(json["single_map_rows"][1]["mean_signed_deviation_pts"].get<double>(), 13.0 / 3.0, 1e-12);
+}
+
 TEST(ComputeAgreement, FeaturesPerFrameRatio) {
   ReportTable timing(kTableTiming, "timing", {kRowFeaturesPerFrame}, kFeatures, 1);
   timing.SetMeasured(kRowFeaturesPerFrame, "SU", 423.5);
