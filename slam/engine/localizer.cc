@@ -6,9 +6,9 @@
 
 #include "slam/core/check.h"
 #include "slam/core/timer.h"
+#include "slam/engine/localization_record_json.h"
 #include "slam/map/map_vocabulary.h"
 #include "slam/retrieval/proximity.h"
-#include "slam/engine/localization_record_json.h"
 
 namespace duskmap {
 

@@ -4,9 +4,9 @@
 #include <map>
 
 #include "slam/core/check.h"
+#include "slam/engine/odometry_cache_json.h"
 #include "slam/graph/graph_errors.h"
 #include "slam/graph/pose_graph.h"
-#include "slam/engine/odometry_cache_json.h"
 
 namespace duskmap {
 namespace {

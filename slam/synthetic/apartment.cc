@@ -307,9 +307,7 @@ void ApartmentOptions::Check() const {
   SLAM_THROW_IF_NOT(ConfigError, relief_scale >= 0.0 && relief_scale <= 10.0)
       << "scene.relief_scale must be in [0, 10], got " << relief_scale;
   furniture.Check();
-  for (size_t i = 0; i < photo_materials.size(); ++i) {
-    photo_materials[i].Check("scene.photo_materials[" + std::to_string(i) + "]");
-  }
+  CheckPhotoMaterialSpecs(photo_materials);
   const bool time_ok = living_lamp_on_from.size() == 5 && living_lamp_on_from[2] == ':';
   SLAM_THROW_IF_NOT(ConfigError, time_ok)
       << "scene.living_lamp_on_from must be \"HH:MM\", got \"" << living_lamp_on_from << "\"";

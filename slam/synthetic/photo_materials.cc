@@ -27,10 +27,6 @@ const std::pair<const char*, TextureKind> kSurfaces[] = {
     {"fabric", TextureKind::kFabric},
 };
 
-int TexelCount(double size_m, double texel_m) {
-  return std::max(2, static_cast<int>(std::lround(size_m / texel_m)));
-}
-
 // A value in [0, 1) drawn from (seed, stream).
 double Uniform(uint64_t seed, uint64_t stream) {
   return static_cast<double>(DeriveSeed(seed, stream) % 1000003) / 1000003.0;
@@ -152,8 +148,7 @@ std::vector<std::string> PhotoSurfaceNames() {
   return names;
 }
 
-LoadedPhotoMaterials LoadPhotoMaterials(const std::vector<PhotoMaterialSpec>& specs,
-                                        const std::string& catalog_path) {
+void CheckPhotoMaterialSpecs(const std::vector<PhotoMaterialSpec>& specs) {
   std::set<std::string> surfaces;
   for (size_t i = 0; i < specs.size(); ++i) {
     const std::string where = "scene.photo_materials[" + std::to_string(i) + "]";
@@ -161,6 +156,11 @@ LoadedPhotoMaterials LoadPhotoMaterials(const std::vector<PhotoMaterialSpec>& sp
     SLAM_THROW_IF_NOT(ConfigError, surfaces.insert(specs[i].surface).second)
         << where << ".surface: '" << specs[i].surface << "' is given twice";
   }
+}
+
+LoadedPhotoMaterials LoadPhotoMaterials(const std::vector<PhotoMaterialSpec>& specs,
+                                        const std::string& catalog_path) {
+  CheckPhotoMaterialSpecs(specs);
   LoadedPhotoMaterials loaded;
   if (specs.empty()) return loaded;
   const FurnitureCatalog catalog =

@@ -31,6 +31,10 @@ struct PhotoMaterialSpec {
   void Check(const std::string& where) const;  // throws ConfigError "<where>.<field>: problem"
 };
 
+// Checks each spec (its index in `where`: "scene.photo_materials[i]") and that
+// no surface is given twice; throws ConfigError.
+void CheckPhotoMaterialSpecs(const std::vector<PhotoMaterialSpec>& specs);
+
 // The surface classes a photo can replace, as TextureKinds.
 TextureKind PhotoSurfaceKind(const std::string& surface);  // throws ConfigError for an unknown name
 std::vector<std::string> PhotoSurfaceNames();
@@ -47,7 +51,7 @@ struct LoadedPhotoMaterials {
   std::vector<AssetCredit> credits;  // one per distinct image
 };
 
-// Checks the specs (each surface at most once), opens the catalog ("" = the
+// Checks the specs (CheckPhotoMaterialSpecs), opens the catalog ("" = the
 // default, furniture_catalog.h) and reads, decodes and resamples each image.
 // The credit of an image is the creator and licence of the catalog piece
 // whose folder holds it, else the catalog's licence. Throws ConfigError for

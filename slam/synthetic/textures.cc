@@ -16,10 +16,6 @@
 namespace duskmap {
 namespace {
 
-int Texels(double size_m, double texel_m) {
-  return std::max(2, static_cast<int>(std::lround(size_m / texel_m)));
-}
-
 cv::Vec3f RandomColor(cv::RNG& rng, float lo, float hi) {
   return cv::Vec3f(rng.uniform(lo, hi), rng.uniform(lo, hi), rng.uniform(lo, hi));
 }
@@ -345,6 +341,10 @@ cv::Mat ValueNoise(cv::Size size, double cell_texels, cv::RNG& rng) {
   return noise;
 }
 
+int TexelCount(double size_m, double texel_m) {
+  return std::max(2, static_cast<int>(std::lround(size_m / texel_m)));
+}
+
 double TexelSizeM(TextureKind kind) {
   switch (kind) {
     case TextureKind::kPaint: return 0.02;
@@ -533,7 +533,7 @@ SurfaceTexture MakeTexture(const TextureRequest& request, const std::vector<cv::
                            const PhotoMaterial* photo) {
   SLAM_CHECK(photo == nullptr || photo->kind == request.kind);
   const double texel = photo != nullptr ? photo->texel_m : TexelSizeM(request.kind);
-  const cv::Size size(Texels(request.size_u_m, texel), Texels(request.size_v_m, texel));
+  const cv::Size size(TexelCount(request.size_u_m, texel), TexelCount(request.size_v_m, texel));
   const bool relief_on = request.relief_scale > 0.0 && HasRelief(request.kind);
   ReliefCanvas relief = relief_on ? ReliefCanvas(size, texel) : ReliefCanvas();
   SurfaceTexture out;

@@ -57,6 +57,9 @@ struct SurfaceTexture {
 // Texel size in metres used for each kind (finer for pictures and books).
 double TexelSizeM(TextureKind kind);
 
+// Texels across `size_m` at `texel_m` each, rounded, at least 2.
+int TexelCount(double size_m, double texel_m);
+
 // Generates the texture. `user_images` (optional) replaces the content of
 // pictures and posters with the user's images, chosen by seed. `photo`
 // (optional, of the request's kind) draws the albedo from a photographic
