@@ -98,8 +98,11 @@ void BM_CaptureAndWriteFrame640x480(benchmark::State& state) {
 }
 BENCHMARK(BM_CaptureAndWriteFrame640x480)->Unit(benchmark::kMillisecond);
 
-// Argument: 1 = the default scene (materials with relief), 0 = every surface
-// flat, 2 = furnished with catalog meshes (their vertices lit too).
+// Argument: 1 = the box scene (materials with relief), 0 = every surface
+// flat, 2 = furnished with catalog meshes (their vertices lit too) and the
+// default config's lighting with the windows' view open (the sky in every
+// direction), 3 = the same with the view obstructed (facades and ground
+// below the horizon: six polygons per window instead of one).
 void BM_PrepareLighting(benchmark::State& state) {
   Fixture& f = Shared();
   static const Scene flat = [] {
@@ -107,18 +110,21 @@ void BM_PrepareLighting(benchmark::State& state) {
     options.relief_scale = 0.0;
     return BuildApartment(options);
   }();
-  if (state.range(0) == 2 && Furnished() == nullptr) {
+  const bool furnished = state.range(0) >= 2;
+  if (furnished && Furnished() == nullptr) {
     state.SkipWithError("sweethome3d-furniture not installed: run scripts/setup.sh");
     return;
   }
-  const Scene& scene = state.range(0) == 2 ? Furnished()->scene : state.range(0) ? f.scene : flat;
+  const Scene& scene = furnished ? Furnished()->scene : state.range(0) ? f.scene : flat;
+  LightingOptions options = furnished ? Furnished()->config.lighting : f.config.lighting;
+  if (furnished) options.window_view_obstructed = state.range(0) == 3;
   for (auto _ : state) {
-    const SessionLighting lighting = ComputeSessionLighting(f.config.lighting, scene, 16.8);
-    SessionRadiance radiance = PrepareSessionRadiance(scene, lighting, f.config.lighting);
+    const SessionLighting lighting = ComputeSessionLighting(options, scene, 16.8);
+    SessionRadiance radiance = PrepareSessionRadiance(scene, lighting, options);
     benchmark::DoNotOptimize(radiance.quads.data());
   }
 }
-BENCHMARK(BM_PrepareLighting)->Arg(1)->Arg(0)->Arg(2)->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK(BM_PrepareLighting)->Arg(1)->Arg(0)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond)->Iterations(2);
 
 }  // namespace
 }  // namespace duskmap

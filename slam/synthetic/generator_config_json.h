@@ -83,6 +83,9 @@ struct JsonCodec<LightingOptions> {
     f("horizon_elevation_deg", o.horizon_elevation_deg);
     f("sky_log10_lux_knots", o.sky_log10_lux_knots);
     f("glass_transmission", o.glass_transmission);
+    f("window_view_obstructed", o.window_view_obstructed);
+    f("facade_reflectance", o.facade_reflectance);
+    f("ground_reflectance", o.ground_reflectance);
     f("lamp_color_temperature_k", o.lamp_color_temperature_k);
     f("lamp_shade_nits_per_cd", o.lamp_shade_nits_per_cd);
     f("ambient_fraction", o.ambient_fraction);

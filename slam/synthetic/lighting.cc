@@ -124,6 +124,70 @@ IrradianceParts DirectIrradiance(const Scene& scene, const SessionLighting& ligh
 
 cv::Vec3f Scale(const cv::Vec3f& c, double s) { return c * static_cast<float>(s); }
 
+// The irradiance vector of the rectangle u0..u1 x v0..v1 of window `q`
+// (zero when empty).
+Eigen::Vector3d WindowPartVector(const Quad& q, double u0, double u1, double v0, double v1,
+                                 const Eigen::Vector3d& point, const Eigen::Vector3d& normal) {
+  if (u1 <= u0 || v1 <= v0) return Eigen::Vector3d::Zero();
+  return PolygonIrradianceVector({q.PointAt(u0, v0), q.PointAt(u1, v0), q.PointAt(u1, v1), q.PointAt(u0, v1)},
+                                 point, normal);
+}
+
+void AddWindowLight(const cv::Vec3f& nits_bgr, const Eigen::Vector3d& vector, const Eigen::Vector3d& normal,
+                    IrradianceParts& parts) {
+  parts.sky += Scale(nits_bgr, normal.dot(vector));
+  parts.direction_weighted += Luminance(nits_bgr) * vector;
+}
+
+// The light through window `q` at `point`: the sky through all of it, or,
+// with an obstructed view (a vertical window, v upwards or downwards), the
+// ground below the point's height, the facades up to their top's elevation
+// and the sky above. The ground's boundary is exact (elevation 0 is the
+// point's height at any distance). The facades' top is placed per quarter of
+// the window's width at its elevation seen at the quarter's middle, which
+// is off by a few per cent of the distance at the quarter's ends. Six
+// polygons: the whole window, the ground, the sky per quarter; the facades
+// are the rest.
+void AddWindowView(const Quad& q, const SessionLighting& lighting, const Eigen::Vector3d& point,
+                   const Eigen::Vector3d& normal, IrradianceParts& parts) {
+  const Eigen::Vector3d whole = PolygonIrradianceVector(Corners(q), point, normal);
+  const double v_up = q.v_axis.z();
+  if (!lighting.window_view_obstructed || std::abs(v_up) < 0.999) {
+    AddWindowLight(lighting.sky_nits_bgr, whole, normal, parts);
+    return;
+  }
+  // v of a height, and the v range from a height to the top (v upwards) or
+  // to the bottom (v downwards).
+  const auto v_at_height = [&](double z) {
+    return std::clamp((z - q.origin_in_world.z()) / v_up, 0.0, q.size_v_m);
+  };
+  const auto above = [&](double u0, double u1, double z) {
+    const double v = v_at_height(z);
+    return v_up > 0.0 ? WindowPartVector(q, u0, u1, v, q.size_v_m, point, normal)
+                      : WindowPartVector(q, u0, u1, 0.0, v, point, normal);
+  };
+  const Eigen::Vector3d ground = whole - above(0.0, q.size_u_m, point.z());
+  Eigen::Vector3d sky = Eigen::Vector3d::Zero();
+  const double tan_top = std::tan(lighting.facade_top_elevation_deg * kPi / 180.0);
+  constexpr int kColumns = 4;
+  for (int c = 0; c < kColumns; ++c) {
+    const double u0 = q.size_u_m * c / kColumns, u1 = q.size_u_m * (c + 1) / kColumns;
+    const Eigen::Vector3d middle = q.PointAt(0.5 * (u0 + u1), 0.0) - point;
+    sky += above(u0, u1, point.z() + tan_top * std::hypot(middle.x(), middle.y()));
+  }
+  // A sunlit facade (the sun on the room's side of the window) adds the sun
+  // at the cosine of its horizontal normal, the window's.
+  Eigen::Vector3d facade_normal = q.normal();
+  facade_normal.z() = 0.0;
+  const double cos_facade_sun = std::max(0.0, facade_normal.normalized().dot(lighting.sun_direction_in_world));
+  const cv::Vec3f facade_nits =
+      lighting.shaded_facade_nits_bgr +
+      Scale(lighting.sun_normal_lux_bgr, lighting.facade_reflectance * cos_facade_sun / kPi);
+  AddWindowLight(lighting.ground_nits_bgr, ground, normal, parts);
+  AddWindowLight(facade_nits, whole - ground - sky, normal, parts);
+  AddWindowLight(lighting.sky_nits_bgr, sky, normal, parts);
+}
+
 }  // namespace
 
 void LightingOptions::Check() const {
@@ -139,6 +203,10 @@ void LightingOptions::Check() const {
       << "lighting.horizon_elevation_deg must be in [-5, 45], got " << horizon_elevation_deg;
   SLAM_THROW_IF_NOT(ConfigError, glass_transmission > 0.0 && glass_transmission <= 1.0)
       << "lighting.glass_transmission must be in (0, 1], got " << glass_transmission;
+  SLAM_THROW_IF_NOT(ConfigError, facade_reflectance >= 0.0 && facade_reflectance <= 1.0)
+      << "lighting.facade_reflectance must be in [0, 1], got " << facade_reflectance;
+  SLAM_THROW_IF_NOT(ConfigError, ground_reflectance >= 0.0 && ground_reflectance <= 1.0)
+      << "lighting.ground_reflectance must be in [0, 1], got " << ground_reflectance;
   SLAM_THROW_IF_NOT(ConfigError, lamp_color_temperature_k >= 1000 && lamp_color_temperature_k <= 12000)
       << "lighting.lamp_color_temperature_k must be in [1000, 12000], got " << lamp_color_temperature_k;
   SLAM_THROW_IF_NOT(ConfigError, ambient_fraction >= 0.0 && ambient_fraction < 1.0)
@@ -205,6 +273,19 @@ SessionLighting ComputeSessionLighting(const LightingOptions& options, const Sce
   }
   const double sky_lux = SkyLux(options, l.sun.elevation_deg);
   l.sky_nits_bgr = Scale(SkyColor(l.sun.elevation_deg), sky_lux / kPi * options.glass_transmission);
+  if (options.window_view_obstructed) {
+    l.window_view_obstructed = true;
+    l.facade_top_elevation_deg = std::max(0.0, options.horizon_elevation_deg);
+    l.facade_reflectance = options.facade_reflectance;
+    // The ground: the sky's horizontal illuminance and the sun's when it
+    // clears the horizon (sun_normal_lux_bgr is already through glass, as the
+    // view of the ground is).
+    const double sin_sun = std::max(0.0, std::sin(l.sun.elevation_deg * kPi / 180.0));
+    l.ground_nits_bgr = Scale(l.sky_nits_bgr + Scale(l.sun_normal_lux_bgr, sin_sun / kPi), options.ground_reflectance);
+    // A vertical facade under a uniform sky: half the sky's horizontal
+    // illuminance, and half the ground's exitance.
+    l.shaded_facade_nits_bgr = Scale(l.sky_nits_bgr + l.ground_nits_bgr, 0.5 * options.facade_reflectance);
+  }
   l.lamp_color_bgr = ColorTemperatureToBgr(options.lamp_color_temperature_k);
   for (const Lamp& lamp : scene.lamps) l.lamp_on.push_back(IsLampOn(lamp, clock_time_h));
   return l;
@@ -232,9 +313,7 @@ IrradianceParts DirectIrradiance(const Scene& scene, const SessionLighting& ligh
   for (const Quad& q : scene.quads) {
     if (q.emission != Emission::kSky || q.room != room) continue;
     if (q.normal().dot(point - q.origin_in_world) <= 0.0) continue;  // behind the window
-    const Eigen::Vector3d window_vector = PolygonIrradianceVector(Corners(q), point, normal);
-    parts.sky += Scale(lighting.sky_nits_bgr, normal.dot(window_vector));
-    parts.direction_weighted += Luminance(lighting.sky_nits_bgr) * window_vector;
+    AddWindowView(q, lighting, point, normal, parts);
     if (sun_up && Luminance(parts.sun) == 0.0f &&
         SunThroughWindow(scene, occluders, q, point, to_sun, receiver_quad)) {
       parts.sun = Scale(lighting.sun_normal_lux_bgr, cos_sun);

@@ -26,6 +26,16 @@ struct LightingOptions {
   std::vector<std::array<double, 2>> sky_log10_lux_knots = {
       {-12.0, -1.5}, {-6.0, 0.5}, {-3.0, 1.6}, {0.0, 2.6}, {5.0, 3.4}, {15.0, 3.9}, {30.0, 4.1}};
   double glass_transmission = 0.75;        // fraction through the window glass
+  // What the windows' lower directions see. Off: the sky fills every
+  // direction through a window. On: a direction below horizon_elevation_deg
+  // sees the facades opposite, one below 0 degrees the ground, each a diffuse
+  // reflector: the ground lit by the sky (and the sun when it clears the
+  // horizon), the facades by half the sky and half the ground's light (they
+  // face the windows, away from the afternoon sun of the south and west
+  // windows; a sunlit facade adds the sun at its cosine).
+  bool window_view_obstructed = false;
+  double facade_reflectance = 0.3;  // brick, concrete (daylighting practice: 0.2-0.4)
+  double ground_reflectance = 0.2;  // street, grass (the CIE's usual ground albedo)
   double lamp_color_temperature_k = 2700;  // warm incandescent/LED
   double lamp_shade_nits_per_cd = 15.0;    // glowing shade radiance per lamp candela
   double ambient_fraction = 0.35;          // interreflection: fraction of the room's mean irradiance
@@ -42,6 +52,14 @@ struct SessionLighting {
   Eigen::Vector3d sun_direction_in_world = Eigen::Vector3d::UnitZ();
   cv::Vec3f sun_normal_lux_bgr = cv::Vec3f(0, 0, 0);  // direct normal, after glass; 0 when hidden
   cv::Vec3f sky_nits_bgr = cv::Vec3f(0, 0, 0);        // sky radiance seen through glass
+  // LightingOptions::window_view_obstructed: the radiance of the ground and
+  // of the shaded facades opposite, seen through glass, and the elevation
+  // of the facades' top (off: zero radiances, the sky in every direction).
+  bool window_view_obstructed = false;
+  double facade_top_elevation_deg = 0.0;
+  double facade_reflectance = 0.0;
+  cv::Vec3f ground_nits_bgr = cv::Vec3f(0, 0, 0);
+  cv::Vec3f shaded_facade_nits_bgr = cv::Vec3f(0, 0, 0);
   std::vector<bool> lamp_on;                          // per Scene::lamps
   cv::Vec3f lamp_color_bgr = cv::Vec3f(1, 1, 1);      // unit-luminance lamp colour
 };

@@ -221,5 +221,109 @@ TEST(LightingOptions, TheHorizonIsAnElevationABuildingCouldHave) {
   }
 }
 
+// A window 2 m wide from 0.9 to 2.1 m in the plane x = 0, the room at x > 0.
+Scene OneWindowScene() {
+  Scene scene;
+  scene.room_names = {"test room"};
+  Quad window;
+  window.origin_in_world = Eigen::Vector3d(0.0, -1.0, 0.9);
+  window.u_axis = Eigen::Vector3d::UnitY();  // normal u x v = +x, into the room
+  window.v_axis = Eigen::Vector3d::UnitZ();
+  window.size_u_m = 2.0;
+  window.size_v_m = 1.2;
+  window.albedo = cv::Mat(8, 8, CV_32FC3, cv::Scalar(1, 1, 1));
+  window.emission = Emission::kSky;
+  window.room = 0;
+  scene.quads.push_back(window);
+  return scene;
+}
+
+// Brute force over the window: each element's radiance is decided by the
+// elevation of the direction from the point through it.
+double IntegrateWindow(const Eigen::Vector3d& point, const Eigen::Vector3d& normal, double facade_top_deg,
+                       double sky, double facade, double ground) {
+  constexpr int kU = 400, kV = 240;
+  double sum = 0.0;
+  for (int i = 0; i < kU; ++i) {
+    for (int j = 0; j < kV; ++j) {
+      const Eigen::Vector3d w(0.0, -1.0 + 2.0 * (i + 0.5) / kU, 0.9 + 1.2 * (j + 0.5) / kV);
+      const Eigen::Vector3d d = w - point;
+      const double r = d.norm();
+      const double cos_receiver = normal.dot(d) / r;
+      if (cos_receiver <= 0.0) continue;
+      const double elevation_deg = std::asin(d.z() / r) * 180.0 / M_PI;
+      const double radiance = elevation_deg > facade_top_deg ? sky : elevation_deg > 0.0 ? facade : ground;
+      sum += radiance * cos_receiver * (-d.x() / r) / (r * r) * (2.0 / kU) * (1.2 / kV);
+    }
+  }
+  return sum;
+}
+
+TEST(WindowView, GroundFacadesAndSkyMatchABruteForceIntegration) {
+  const Scene scene = OneWindowScene();
+  LightingOptions options;
+  options.window_view_obstructed = true;
+  options.horizon_elevation_deg = 14.0;
+  SessionLighting l = ComputeSessionLighting(options, scene, 20.75);
+  l.sun_normal_lux_bgr = cv::Vec3f(0, 0, 0);
+  l.sky_nits_bgr = cv::Vec3f(1000, 1000, 1000);
+  l.shaded_facade_nits_bgr = cv::Vec3f(150, 150, 150);
+  l.ground_nits_bgr = cv::Vec3f(200, 200, 200);
+  SessionLighting open = l;
+  open.window_view_obstructed = false;
+  const std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> probes = {
+      {{4.0, 0.0, 1.4}, {-1, 0, 0}},   // the far wall at eye height
+      {{3.0, 0.8, 1.3}, {0, -1, 0}},   // a side wall
+      {{2.0, -0.5, 0.75}, {0, 0, 1}},  // a table
+      {{2.0, 0.0, 2.5}, {0, 0, -1}},   // the ceiling
+      {{1.2, 0.3, 0.0}, {0, 0, 1}}};   // the floor near the window
+  for (const auto& [point, normal] : probes) {
+    const double split = Luminance(ComputeDirectIrradiance(scene, l, point, normal, 0, -1).sky);
+    const double expected = IntegrateWindow(point, normal, 14.0, 1000, 150, 200);
+    EXPECT_NEAR(split, expected, 0.03 * expected) << point.transpose();
+    const double uniform = Luminance(ComputeDirectIrradiance(scene, open, point, normal, 0, -1).sky);
+    EXPECT_NEAR(uniform, IntegrateWindow(point, normal, 14.0, 1000, 1000, 1000), 0.01 * uniform);
+  }
+  // Eye height sees facades and ground, far below the sky; the floor near
+  // the window sees the sky alone (its whole view lies above 36 degrees).
+  const auto ratio = [&](const Eigen::Vector3d& p, const Eigen::Vector3d& n) {
+    return Luminance(ComputeDirectIrradiance(scene, l, p, n, 0, -1).sky) /
+           Luminance(ComputeDirectIrradiance(scene, open, p, n, 0, -1).sky);
+  };
+  EXPECT_LT(ratio({4.0, 0.0, 1.4}, {-1, 0, 0}), 0.3);
+  EXPECT_FLOAT_EQ(ratio({1.2, 0.3, 0.0}, {0, 0, 1}), 1.0f);
+}
+
+TEST(WindowView, GroundAndFacadesAreLitBySkyAndSun) {
+  const Scene scene = OneWindowScene();
+  LightingOptions options;
+  options.window_view_obstructed = true;
+  options.horizon_elevation_deg = 1.5;
+  const SessionLighting l = ComputeSessionLighting(options, scene, 16.75);  // sun up, about 24 degrees
+  ASSERT_GT(l.sun_normal_lux_bgr[1], 0.0f);
+  const double sin_sun = std::sin(l.sun.elevation_deg * M_PI / 180.0);
+  EXPECT_NEAR(l.ground_nits_bgr[1], 0.2 * (l.sky_nits_bgr[1] + l.sun_normal_lux_bgr[1] * sin_sun / M_PI),
+              1e-3 * l.ground_nits_bgr[1]);
+  EXPECT_NEAR(l.shaded_facade_nits_bgr[1], 0.15 * (l.sky_nits_bgr[1] + l.ground_nits_bgr[1]),
+              1e-3 * l.shaded_facade_nits_bgr[1]);
+  options.window_view_obstructed = false;
+  const SessionLighting open = ComputeSessionLighting(options, scene, 16.75);
+  EXPECT_EQ(open.ground_nits_bgr, cv::Vec3f(0, 0, 0));
+  EXPECT_FALSE(open.window_view_obstructed);
+}
+
+TEST(LightingOptions, ReflectancesOutsideZeroToOneAreRefused) {
+  LightingOptions options;
+  for (const double bad : {-0.1, 1.1}) {
+    options.facade_reflectance = bad;
+    EXPECT_THROW(options.Check(), ConfigError) << bad;
+    options.facade_reflectance = 0.3;
+    options.ground_reflectance = bad;
+    EXPECT_THROW(options.Check(), ConfigError) << bad;
+    options.ground_reflectance = 0.2;
+  }
+  EXPECT_NO_THROW(options.Check());
+}
+
 }  // namespace
 }  // namespace duskmap
