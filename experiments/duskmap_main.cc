@@ -1,4 +1,6 @@
 // The `duskmap` command-line program: one binary, one subcommand per job.
+#include <malloc.h>
+
 #include <exception>
 #include <iostream>
 #include <map>
@@ -6,7 +8,25 @@
 #include "experiments/command_registry.h"
 #include "slam/core/check.h"
 
+namespace {
+
+// Keeps freed heap memory in the process instead of handing it back to the
+// kernel as soon as a frame's buffers are freed. OpenCV's detectors allocate
+// and free megabytes of image pyramids per frame; with glibc's defaults
+// their pages were unmapped and faulted in again frame after frame: one KAZE
+// extraction job of a 160-frame session took 119 s on a 2-core VM, 53 s with
+// these settings, with the same results (docs/experiments.md, "Jobs, caches,
+// resume, shards").
+void KeepFreedHeapMemory() {
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);  // heap, not mmap, up to 32 MiB (glibc's largest)
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);   // trim only above 1 GiB of free top
+  mallopt(M_TOP_PAD, 256 << 20);        // grow the heap 256 MiB at a time
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  KeepFreedHeapMemory();
   using duskmap::cli::RunFn;
   CLI::App app{
       "duskmap: benchmark and evaluation harness for illumination-invariant visual "
