@@ -52,9 +52,7 @@ class FeaturesCli : public ::testing::Test {
   static void SetUpTestSuite() {
     dir_ = duskmap::testing::ProcessTempDir("features_cli");
     const Result generated = duskmap::testing::GenerateSmallApartment(
-        dir_, 8,
-        {{{"name", "1"}, {"clock_time", "16:46"}, {"role", "mapping"}},
-         {{"name", "A"}, {"clock_time", "16:51"}, {"role", "localization"}}});
+        dir_, 8, {"1", "A"});
     ASSERT_EQ(generated.exit_code, 0) << generated.output;
   }
   static void TearDownTestSuite() { fs::remove_all(dir_); }

@@ -49,11 +49,7 @@ class RunCli : public ::testing::Test {
   static void SetUpTestSuite() {
     dir_ = duskmap::testing::ProcessTempDir("run_cli");
     const Result generated = duskmap::testing::GenerateSmallApartment(
-        dir_.string(), 10,
-        nlohmann::json::array(
-            {{{"name", "1"}, {"clock_time", "16:46"}, {"role", "mapping"}},
-             {{"name", "2"}, {"clock_time", "17:27"}, {"role", "mapping"}},
-             {{"name", "A"}, {"clock_time", "16:51"}, {"role", "localization"}}}));
+        dir_.string(), 10, {"1", "2", "A"});
     ASSERT_EQ(generated.exit_code, 0) << generated.output;
     const nlohmann::json experiment = {
         {"dataset", {{"path", (dir_ / "data").string()}, {"format", "synthetic"}}},

@@ -60,11 +60,7 @@ class SafetyCli : public ::testing::Test {
   static void SetUpTestSuite() {
     dir_ = duskmap::testing::ProcessTempDir("safety_cli");
     const Result generated = duskmap::testing::GenerateSmallApartment(
-        dir_.string(), 6,
-        nlohmann::json::array(
-            {{{"name", "1"}, {"clock_time", "16:46"}, {"role", "mapping"}},
-             {{"name", "2"}, {"clock_time", "17:27"}, {"role", "mapping"}},
-             {{"name", "A"}, {"clock_time", "16:51"}, {"role", "localization"}}}));
+        dir_.string(), 6, {"1", "2", "A"});
     ASSERT_EQ(generated.exit_code, 0) << generated.output;
     WriteExperiment("experiment.json", Experiment());
     const Result map = RunDuskmap("map --dataset " + Data() + " --sessions 1 --feature orb --output " +

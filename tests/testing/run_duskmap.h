@@ -8,8 +8,11 @@
 #include <cstdio>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
+
+#include "slam/synthetic/generator_config.h"
 
 namespace duskmap::testing {
 
@@ -32,10 +35,21 @@ inline CliResult RunDuskmap(const std::string& args, const std::string& prefix =
 }
 
 // Generates the box-furniture apartment (configs/sunset_apartment_boxes.json) with
-// `max_frames` frames per session and the given sessions (objects with name,
-// clock_time, role) into `dir`/data, through `duskmap generate`.
+// `max_frames` frames per session into `dir`/data, through `duskmap generate`:
+// the named sessions of the default twelve, at their clock times and roles
+// (GeneratorConfig::DefaultSessions).
 inline CliResult GenerateSmallApartment(const std::string& dir, int max_frames,
-                                        const nlohmann::json& sessions) {
+                                        const std::vector<std::string>& session_names) {
+  nlohmann::json sessions = nlohmann::json::array();
+  for (const std::string& name : session_names) {
+    bool found = false;
+    for (const SessionSpec& s : GeneratorConfig::DefaultSessions()) {
+      if (s.name != name) continue;
+      sessions.push_back({{"name", s.name}, {"clock_time", s.clock_time}, {"role", s.role}});
+      found = true;
+    }
+    if (!found) return {-1, "GenerateSmallApartment: no default session '" + name + "'"};
+  }
   nlohmann::json config = nlohmann::json::parse(
       std::ifstream(std::string(DUSKMAP_SOURCE_DIR) + "/configs/sunset_apartment_boxes.json"));
   config["max_frames"] = max_frames;
