@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "slam/core/check.h"
+#include "slam/synthetic/quad_bvh.h"
 
 namespace duskmap {
 namespace {
@@ -73,31 +75,37 @@ std::array<Eigen::Vector3d, 4> Corners(const Quad& q) {
           q.PointAt(0.0, q.size_v_m)};
 }
 
-// Opaque quads of each room: what can cast a shadow on a point of that room
-// (light reaches a room only through its own windows, or from its own lamps;
-// walls, furniture and fittings are assigned to the room they stand in).
-// Glowing lamp shades do not occlude their light.
-std::vector<std::vector<int>> OccludersByRoom(const Scene& scene) {
-  std::vector<std::vector<int>> occluders(scene.room_names.size());
+// What a receiver in one room can be shadowed by and lit through: the room's
+// opaque quads (light reaches a room only through its own windows, or from
+// its own lamps; walls, furniture and fittings are assigned to the room they
+// stand in; glowing lamp shades do not occlude their light), in a BVH, and
+// its windows in scene order (the order their light is summed in).
+struct RoomShadowing {
+  int index = -1;  // into Scene::room_names (any value: an unknown room has no occluders)
+  QuadBvh occluders;
+  std::vector<int> windows;
+};
+
+RoomShadowing ShadowingOfRoom(const Scene& scene, int room) {
+  const bool known_room = room >= 0 && room < static_cast<int>(scene.room_names.size());
+  std::vector<int> opaque;
+  RoomShadowing shadowing;
+  shadowing.index = room;
   for (size_t i = 0; i < scene.quads.size(); ++i) {
     const Quad& q = scene.quads[i];
-    if (q.emission != Emission::kNone) continue;
-    if (q.room >= 0 && q.room < static_cast<int>(occluders.size())) {
-      occluders[static_cast<size_t>(q.room)].push_back(static_cast<int>(i));
-    }
+    if (q.room != room) continue;
+    if (q.emission == Emission::kSky) shadowing.windows.push_back(static_cast<int>(i));
+    if (q.emission == Emission::kNone && known_room) opaque.push_back(static_cast<int>(i));
   }
-  return occluders;
+  shadowing.occluders = QuadBvh(scene.quads, opaque);
+  return shadowing;
 }
 
 // Whether an occluder (one of the room's quads or a furniture mesh) lies on
 // the segment from `point` along the unit `direction` up to `distance`.
-bool Occluded(const Scene& scene, const std::vector<int>& occluders, const Eigen::Vector3d& point,
+bool Occluded(const Scene& scene, const RoomShadowing& room, const Eigen::Vector3d& point,
               const Eigen::Vector3d& direction, double distance, int receiver_quad) {
-  for (const int i : occluders) {
-    if (i == receiver_quad) continue;
-    const double d = scene.quads[static_cast<size_t>(i)].Intersect(point, direction);
-    if (d > 1e-4 && d < distance) return true;
-  }
+  if (room.occluders.Occluded(point, direction, distance, receiver_quad, 1e-4)) return true;
   // The furniture meshes (any room: light reaches a room only through its
   // own windows and from its own lamps, so a piece elsewhere is never
   // between).
@@ -106,7 +114,7 @@ bool Occluded(const Scene& scene, const std::vector<int>& occluders, const Eigen
 
 // Whether the sun reaches `point` through window `w` (mullions and the
 // room's opaque quads checked).
-bool SunThroughWindow(const Scene& scene, const std::vector<int>& occluders, const Quad& window,
+bool SunThroughWindow(const Scene& scene, const RoomShadowing& room, const Quad& window,
                       const Eigen::Vector3d& point, const Eigen::Vector3d& to_sun,
                       int receiver_quad) {
   const double d_window = window.Intersect(point, to_sun);
@@ -115,12 +123,12 @@ bool SunThroughWindow(const Scene& scene, const std::vector<int>& occluders, con
   const int col = std::clamp(static_cast<int>(hit.dot(window.u_axis) / window.size_u_m * window.albedo.cols), 0, window.albedo.cols - 1);
   const int row = std::clamp(static_cast<int>(hit.dot(window.v_axis) / window.size_v_m * window.albedo.rows), 0, window.albedo.rows - 1);
   if (Luminance(window.albedo.at<cv::Vec3f>(row, col)) < 0.05f) return false;  // mullion
-  return !Occluded(scene, occluders, point, to_sun, d_window, receiver_quad);
+  return !Occluded(scene, room, point, to_sun, d_window, receiver_quad);
 }
 
 IrradianceParts DirectIrradiance(const Scene& scene, const SessionLighting& lighting,
-                                 const std::vector<int>& occluders, const Eigen::Vector3d& point,
-                                 const Eigen::Vector3d& normal, int room, int receiver_quad);
+                                 const RoomShadowing& room, const Eigen::Vector3d& point,
+                                 const Eigen::Vector3d& normal, int receiver_quad);
 
 cv::Vec3f Scale(const cv::Vec3f& c, double s) { return c * static_cast<float>(s); }
 
@@ -294,42 +302,38 @@ SessionLighting ComputeSessionLighting(const LightingOptions& options, const Sce
 IrradianceParts ComputeDirectIrradiance(const Scene& scene, const SessionLighting& lighting,
                                         const Eigen::Vector3d& point, const Eigen::Vector3d& normal,
                                         int room, int receiver_quad) {
-  const std::vector<std::vector<int>> occluders = OccludersByRoom(scene);
-  static const std::vector<int> kNone;
-  const bool known_room = room >= 0 && room < static_cast<int>(occluders.size());
-  return DirectIrradiance(scene, lighting, known_room ? occluders[static_cast<size_t>(room)] : kNone,
-                          point, normal, room, receiver_quad);
+  return DirectIrradiance(scene, lighting, ShadowingOfRoom(scene, room), point, normal, receiver_quad);
 }
 
 namespace {
 
 IrradianceParts DirectIrradiance(const Scene& scene, const SessionLighting& lighting,
-                                 const std::vector<int>& occluders, const Eigen::Vector3d& point,
-                                 const Eigen::Vector3d& normal, int room, int receiver_quad) {
+                                 const RoomShadowing& room, const Eigen::Vector3d& point,
+                                 const Eigen::Vector3d& normal, int receiver_quad) {
   IrradianceParts parts;
   const Eigen::Vector3d& to_sun = lighting.sun_direction_in_world;
   const double cos_sun = normal.dot(to_sun);
   const bool sun_up = lighting.sun_normal_lux_bgr[1] > 0.0f && cos_sun > 0.0;
-  for (const Quad& q : scene.quads) {
-    if (q.emission != Emission::kSky || q.room != room) continue;
+  for (const int w : room.windows) {
+    const Quad& q = scene.quads[static_cast<size_t>(w)];
     if (q.normal().dot(point - q.origin_in_world) <= 0.0) continue;  // behind the window
     AddWindowView(q, lighting, point, normal, parts);
     if (sun_up && Luminance(parts.sun) == 0.0f &&
-        SunThroughWindow(scene, occluders, q, point, to_sun, receiver_quad)) {
+        SunThroughWindow(scene, room, q, point, to_sun, receiver_quad)) {
       parts.sun = Scale(lighting.sun_normal_lux_bgr, cos_sun);
       parts.direction_weighted += Luminance(lighting.sun_normal_lux_bgr) * to_sun;
     }
   }
   for (size_t i = 0; i < scene.lamps.size(); ++i) {
     const Lamp& lamp = scene.lamps[i];
-    if (!lighting.lamp_on[i] || lamp.room != room) continue;
+    if (!lighting.lamp_on[i] || lamp.room != room.index) continue;
     const Eigen::Vector3d to_lamp = lamp.position_in_world - point;
     const double r2 = std::max(to_lamp.squaredNorm(), 0.01);
     const double r = std::sqrt(r2);
     const double cos_lamp = normal.dot(to_lamp) / r;
     if (cos_lamp <= 0.0) continue;
     // Hard shadows from a point lamp: furniture, objects and walls between.
-    if (Occluded(scene, occluders, point, to_lamp / r, r, receiver_quad)) continue;
+    if (Occluded(scene, room, point, to_lamp / r, r, receiver_quad)) continue;
     parts.lamps += Scale(lighting.lamp_color_bgr, lamp.intensity_cd * cos_lamp / r2);
     parts.direction_weighted += (lamp.intensity_cd / r2) * Luminance(lighting.lamp_color_bgr) * (to_lamp / r);
   }
@@ -345,7 +349,7 @@ struct LightMap {
 };
 
 LightMap ComputeLightMap(const Scene& scene, const SessionLighting& lighting,
-                         const std::vector<int>& occluders, int quad_index, double texel_m) {
+                         const RoomShadowing& room, int quad_index, double texel_m) {
   const Quad& q = scene.quads[quad_index];
   LightMap map;
   map.nodes_u = std::max(2, static_cast<int>(std::ceil(q.size_u_m / texel_m)) + 1);
@@ -357,7 +361,7 @@ LightMap ComputeLightMap(const Scene& scene, const SessionLighting& lighting,
   for (int j = 0; j < map.nodes_v; ++j) {
     for (int i = 0; i < map.nodes_u; ++i) {
       const Eigen::Vector3d p = q.PointAt(q.size_u_m * i / (map.nodes_u - 1), q.size_v_m * j / (map.nodes_v - 1)) + 1e-3 * n;
-      const IrradianceParts parts = DirectIrradiance(scene, lighting, occluders, p, n, q.room, quad_index);
+      const IrradianceParts parts = DirectIrradiance(scene, lighting, room, p, n, quad_index);
       const size_t k = static_cast<size_t>(j) * map.nodes_u + i;
       map.lux[k] = parts.total();
       if (!map.vector_uvn.empty()) {
@@ -427,15 +431,18 @@ std::vector<cv::Vec3f> AmbientPerRoom(const Scene& scene, const std::vector<Ligh
 
 SessionRadiance PrepareSessionRadiance(const Scene& scene, const SessionLighting& lighting,
                                        const LightingOptions& options) {
-  const std::vector<std::vector<int>> occluders = OccludersByRoom(scene);
+  // Each room's shadowing, built when a receiver first needs it.
+  std::map<int, RoomShadowing> rooms;
+  const auto shadowing = [&](int room) -> const RoomShadowing& {
+    auto it = rooms.find(room);
+    if (it == rooms.end()) it = rooms.emplace(room, ShadowingOfRoom(scene, room)).first;
+    return it->second;
+  };
   std::vector<LightMap> maps(scene.quads.size());
   for (size_t i = 0; i < scene.quads.size(); ++i) {
     const Quad& q = scene.quads[i];
     if (q.emission == Emission::kSky) continue;
-    static const std::vector<int> kNone;
-    const bool known_room = q.room >= 0 && q.room < static_cast<int>(occluders.size());
-    maps[i] = ComputeLightMap(scene, lighting, known_room ? occluders[static_cast<size_t>(q.room)] : kNone,
-                              static_cast<int>(i), options.light_texel_m);
+    maps[i] = ComputeLightMap(scene, lighting, shadowing(q.room), static_cast<int>(i), options.light_texel_m);
   }
   const std::vector<cv::Vec3f> ambient = AmbientPerRoom(scene, maps, options);
   std::vector<cv::Mat> radiance(scene.quads.size());
@@ -474,16 +481,15 @@ SessionRadiance PrepareSessionRadiance(const Scene& scene, const SessionLighting
   session.mesh_vertex_light.resize(scene.meshes.size());
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const SceneMesh& mesh = scene.meshes[m];
-    static const std::vector<int> kNone;
-    const bool known_room = mesh.room >= 0 && mesh.room < static_cast<int>(occluders.size());
-    const std::vector<int>& room_occluders = known_room ? occluders[static_cast<size_t>(mesh.room)] : kNone;
+    const RoomShadowing& room = shadowing(mesh.room);
+    const bool known_room = mesh.room >= 0 && mesh.room < static_cast<int>(scene.room_names.size());
     const cv::Vec3f room_ambient = known_room ? ambient[static_cast<size_t>(mesh.room)] : cv::Vec3f(0, 0, 0);
     std::vector<cv::Vec3f>& light = session.mesh_vertex_light[m];
     light.resize(mesh.positions_in_world.size());
     for (size_t v = 0; v < light.size(); ++v) {
       const Eigen::Vector3d n = mesh.normals_in_world[v].cast<double>();
       const Eigen::Vector3d p = mesh.positions_in_world[v].cast<double>() + 1e-3 * n;
-      const IrradianceParts parts = DirectIrradiance(scene, lighting, room_occluders, p, n, mesh.room, -1);
+      const IrradianceParts parts = DirectIrradiance(scene, lighting, room, p, n, -1);
       light[v] = (parts.total() + room_ambient) * inv_pi;
     }
   }
