@@ -23,6 +23,10 @@ void GeneratorConfig::Check() const {
   depth.Check();
   route.Check();
   odometry.Check();
+  SLAM_THROW_IF_NOT(ConfigError, !lighting.window_view_in_camera ||
+                                     (scene.window_reflectance == 0.0 && scene.floor_reflectance == 0.0))
+      << "lighting.window_view_in_camera does not support mirrors (scene.window_reflectance and "
+         "scene.floor_reflectance must be 0)";
   SLAM_THROW_IF_NOT(ConfigError, !sessions.empty()) << "sessions must not be empty";
   std::set<std::string> names;
   for (const SessionSpec& s : sessions) {

@@ -84,6 +84,7 @@ struct JsonCodec<LightingOptions> {
     f("sky_log10_lux_knots", o.sky_log10_lux_knots);
     f("glass_transmission", o.glass_transmission);
     f("window_view_obstructed", o.window_view_obstructed);
+    f("window_view_in_camera", o.window_view_in_camera);
     f("facade_reflectance", o.facade_reflectance);
     f("ground_reflectance", o.ground_reflectance);
     f("lamp_color_temperature_k", o.lamp_color_temperature_k);

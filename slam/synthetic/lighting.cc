@@ -11,6 +11,9 @@ namespace duskmap {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+// A window texel darker than this (albedo luminance) is frame or mullion:
+// opaque to the sun, not glass.
+constexpr float kMullionLuminance = 0.05f;
 
 double SkyLux(const LightingOptions& options, double elevation_deg) {
   const auto& k = options.sky_log10_lux_knots;
@@ -122,7 +125,7 @@ bool SunThroughWindow(const Scene& scene, const RoomShadowing& room, const Quad&
   const Eigen::Vector3d hit = point + d_window * to_sun - window.origin_in_world;
   const int col = std::clamp(static_cast<int>(hit.dot(window.u_axis) / window.size_u_m * window.albedo.cols), 0, window.albedo.cols - 1);
   const int row = std::clamp(static_cast<int>(hit.dot(window.v_axis) / window.size_v_m * window.albedo.rows), 0, window.albedo.rows - 1);
-  if (Luminance(window.albedo.at<cv::Vec3f>(row, col)) < 0.05f) return false;  // mullion
+  if (Luminance(window.albedo.at<cv::Vec3f>(row, col)) < kMullionLuminance) return false;
   return !Occluded(scene, room, point, to_sun, d_window, receiver_quad);
 }
 
@@ -147,6 +150,23 @@ void AddWindowLight(const cv::Vec3f& nits_bgr, const Eigen::Vector3d& vector, co
   parts.direction_weighted += Luminance(nits_bgr) * vector;
 }
 
+// The facades' radiance seen through window `q`: shaded, or, where the sun
+// is on the room's side of the window, with the sun at the cosine of their
+// horizontal normal, the window's.
+cv::Vec3f FacadeNits(const Quad& q, const SessionLighting& lighting) {
+  Eigen::Vector3d facade_normal = q.normal();
+  facade_normal.z() = 0.0;
+  const double cos_facade_sun = std::max(0.0, facade_normal.normalized().dot(lighting.sun_direction_in_world));
+  return lighting.shaded_facade_nits_bgr +
+         Scale(lighting.sun_normal_lux_bgr, lighting.facade_reflectance * cos_facade_sun / kPi);
+}
+
+// Whether a window's view is split into sky, facades and ground (a vertical
+// window with the view obstructed).
+bool ViewObstructed(const Quad& q, const SessionLighting& lighting) {
+  return lighting.window_view_obstructed && std::abs(q.v_axis.z()) >= 0.999;
+}
+
 // The light through window `q` at `point`: the sky through all of it, or,
 // with an obstructed view (a vertical window, v upwards or downwards), the
 // ground below the point's height, the facades up to their top's elevation
@@ -160,7 +180,7 @@ void AddWindowView(const Quad& q, const SessionLighting& lighting, const Eigen::
                    const Eigen::Vector3d& normal, IrradianceParts& parts) {
   const Eigen::Vector3d whole = PolygonIrradianceVector(Corners(q), point, normal);
   const double v_up = q.v_axis.z();
-  if (!lighting.window_view_obstructed || std::abs(v_up) < 0.999) {
+  if (!ViewObstructed(q, lighting)) {
     AddWindowLight(lighting.sky_nits_bgr, whole, normal, parts);
     return;
   }
@@ -183,14 +203,7 @@ void AddWindowView(const Quad& q, const SessionLighting& lighting, const Eigen::
     const Eigen::Vector3d middle = q.PointAt(0.5 * (u0 + u1), 0.0) - point;
     sky += above(u0, u1, point.z() + tan_top * std::hypot(middle.x(), middle.y()));
   }
-  // A sunlit facade (the sun on the room's side of the window) adds the sun
-  // at the cosine of its horizontal normal, the window's.
-  Eigen::Vector3d facade_normal = q.normal();
-  facade_normal.z() = 0.0;
-  const double cos_facade_sun = std::max(0.0, facade_normal.normalized().dot(lighting.sun_direction_in_world));
-  const cv::Vec3f facade_nits =
-      lighting.shaded_facade_nits_bgr +
-      Scale(lighting.sun_normal_lux_bgr, lighting.facade_reflectance * cos_facade_sun / kPi);
+  const cv::Vec3f facade_nits = FacadeNits(q, lighting);
   AddWindowLight(lighting.ground_nits_bgr, ground, normal, parts);
   AddWindowLight(facade_nits, whole - ground - sky, normal, parts);
   AddWindowLight(lighting.sky_nits_bgr, sky, normal, parts);
@@ -215,6 +228,8 @@ void LightingOptions::Check() const {
       << "lighting.facade_reflectance must be in [0, 1], got " << facade_reflectance;
   SLAM_THROW_IF_NOT(ConfigError, ground_reflectance >= 0.0 && ground_reflectance <= 1.0)
       << "lighting.ground_reflectance must be in [0, 1], got " << ground_reflectance;
+  SLAM_THROW_IF_NOT(ConfigError, !window_view_in_camera || window_view_obstructed)
+      << "lighting.window_view_in_camera needs lighting.window_view_obstructed";
   SLAM_THROW_IF_NOT(ConfigError, lamp_color_temperature_k >= 1000 && lamp_color_temperature_k <= 12000)
       << "lighting.lamp_color_temperature_k must be in [1000, 12000], got " << lamp_color_temperature_k;
   SLAM_THROW_IF_NOT(ConfigError, ambient_fraction >= 0.0 && ambient_fraction < 1.0)
@@ -230,6 +245,17 @@ void LightingOptions::Check() const {
     SLAM_THROW_IF_NOT(ConfigError, sky_log10_lux_knots[i][0] > sky_log10_lux_knots[i - 1][0])
         << "lighting.sky_log10_lux_knots elevations must increase (knot " << i << ")";
   }
+}
+
+cv::Vec3f WindowViewRadiance::Seen(int quad, const Eigen::Vector3d& direction_in_world) const {
+  const size_t i = static_cast<size_t>(quad);
+  if (!obstructed[i]) return sky_nits_bgr;
+  const double horizontal = std::hypot(direction_in_world.x(), direction_in_world.y());
+  if (direction_in_world.z() < 0.0) return ground_nits_bgr;
+  if (direction_in_world.z() < horizontal * std::tan(facade_top_elevation_deg * kPi / 180.0)) {
+    return facade_nits_bgr[i];
+  }
+  return sky_nits_bgr;
 }
 
 double ParseClockTime(const std::string& hh_mm, const std::string& what) {
@@ -445,6 +471,22 @@ SessionRadiance PrepareSessionRadiance(const Scene& scene, const SessionLighting
     maps[i] = ComputeLightMap(scene, lighting, shadowing(q.room), static_cast<int>(i), options.light_texel_m);
   }
   const std::vector<cv::Vec3f> ambient = AmbientPerRoom(scene, maps, options);
+  SessionRadiance session;
+  const bool pane_mask = options.window_view_in_camera && lighting.window_view_obstructed;
+  if (pane_mask) {
+    WindowViewRadiance& view = session.window_view;
+    view.enabled = true;
+    view.facade_top_elevation_deg = lighting.facade_top_elevation_deg;
+    view.sky_nits_bgr = lighting.sky_nits_bgr;
+    view.ground_nits_bgr = lighting.ground_nits_bgr;
+    view.facade_nits_bgr.resize(scene.quads.size(), cv::Vec3f(0, 0, 0));
+    view.obstructed.resize(scene.quads.size(), false);
+    for (size_t i = 0; i < scene.quads.size(); ++i) {
+      if (scene.quads[i].emission != Emission::kSky) continue;
+      view.facade_nits_bgr[i] = FacadeNits(scene.quads[i], lighting);
+      view.obstructed[i] = ViewObstructed(scene.quads[i], lighting);
+    }
+  }
   std::vector<cv::Mat> radiance(scene.quads.size());
   const float inv_pi = static_cast<float>(1.0 / kPi);
   for (size_t i = 0; i < scene.quads.size(); ++i) {
@@ -459,7 +501,8 @@ SessionRadiance PrepareSessionRadiance(const Scene& scene, const SessionLighting
       const double fv = (r + 0.5) / out.rows;
       for (int c = 0; c < out.cols; ++c) {
         if (q.emission == Emission::kSky) {
-          o[c] = a[c].mul(lighting.sky_nits_bgr);
+          o[c] = pane_mask ? (Luminance(a[c]) < kMullionLuminance ? a[c] : cv::Vec3f(1, 1, 1))
+                           : a[c].mul(lighting.sky_nits_bgr);
         } else if (glowing) {
           o[c] = a[c].mul(lighting.lamp_color_bgr) *
                  static_cast<float>(scene.lamps[q.lamp].intensity_cd * options.lamp_shade_nits_per_cd);
@@ -473,7 +516,6 @@ SessionRadiance PrepareSessionRadiance(const Scene& scene, const SessionLighting
     }
     radiance[i] = out;
   }
-  SessionRadiance session;
   session.quads = std::move(radiance);
   // Meshes, per vertex: the direct light at the vertex (1 mm off its surface
   // along its normal, so that its own triangles do not shadow it) with the
@@ -499,6 +541,8 @@ SessionRadiance PrepareSessionRadiance(const Scene& scene, const SessionLighting
 std::vector<cv::Mat> PrepareRadiance(const Scene& scene, const SessionLighting& lighting,
                                      const LightingOptions& options) {
   SLAM_CHECK_MSG(scene.meshes.empty(), "PrepareRadiance: a scene with meshes needs PrepareSessionRadiance");
+  SLAM_CHECK_MSG(!options.window_view_in_camera,
+                 "PrepareRadiance: lighting.window_view_in_camera needs PrepareSessionRadiance");
   return PrepareSessionRadiance(scene, lighting, options).quads;
 }
 

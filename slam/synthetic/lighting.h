@@ -34,6 +34,12 @@ struct LightingOptions {
   // face the windows, away from the afternoon sun of the south and west
   // windows; a sunlit facade adds the sun at its cosine).
   bool window_view_obstructed = false;
+  // With window_view_obstructed (which it needs): the camera sees that view
+  // through the glass too, by each pixel's viewing direction (the sky above
+  // the facades' top, the facades below it, the ground below the horizon),
+  // instead of the window texture's fixed sky and silhouettes. Renders need
+  // PrepareSessionRadiance's window_view; mirrors are not supported with it.
+  bool window_view_in_camera = false;
   double facade_reflectance = 0.3;  // brick, concrete (daylighting practice: 0.2-0.4)
   double ground_reflectance = 0.2;  // street, grass (the CIE's usual ground albedo)
   double lamp_color_temperature_k = 2700;  // warm incandescent/LED
@@ -91,11 +97,35 @@ IrradianceParts ComputeDirectIrradiance(const Scene& scene, const SessionLightin
                                         int room, int receiver_quad);
 
 // What a session's frames are rendered with (renderer.h).
+// What the camera sees through the windows when
+// LightingOptions::window_view_in_camera is on: the radiance a viewing ray
+// finds outside, by its elevation (the facades and the ground at a distance
+// where the camera's own displacement does not matter).
+struct WindowViewRadiance {
+  bool enabled = false;
+  double facade_top_elevation_deg = 0.0;
+  cv::Vec3f sky_nits_bgr = cv::Vec3f(0, 0, 0);
+  cv::Vec3f ground_nits_bgr = cv::Vec3f(0, 0, 0);
+  // Per scene quad: the facades' radiance seen through that window (a sunlit
+  // facade depends on the window's side); meaningful for obstructed windows.
+  std::vector<cv::Vec3f> facade_nits_bgr;
+  // Per scene quad: whether its view is split (a vertical window); other
+  // windows show the sky in every direction, as their light does.
+  std::vector<bool> obstructed;
+
+  // The radiance seen along `direction_in_world` through window quad `quad`.
+  cv::Vec3f Seen(int quad, const Eigen::Vector3d& direction_in_world) const;
+};
+
 struct SessionRadiance {
   // The radiance texture (nits, CV_32FC3) of every quad: albedo x light map
   // / pi for diffuse quads (light map with ambient term), the sky for
-  // windows, the glow of lit lamp shades.
+  // windows, the glow of lit lamp shades. With window_view.enabled a
+  // window's texture is a pane mask instead (1 for glass, the albedo of its
+  // frame and mullions), which the renderer multiplies by what a pixel's
+  // viewing ray sees outside.
   std::vector<cv::Mat> quads;
+  WindowViewRadiance window_view;
   // Per scene mesh, per vertex: (direct irradiance + the room's ambient) /
   // pi, the radiance of a unit albedo there (nits, linear BGR); the renderer
   // interpolates it over each triangle and multiplies the texture's albedo.

@@ -306,18 +306,21 @@ void Renderer::RenderMeshes(const std::vector<std::vector<cv::Vec3f>>& vertex_li
 
 void Renderer::Render(const SessionRadiance& radiance, const Rigid3d& world_from_camera,
                       RenderedView* view) const {
-  RenderScene(radiance.quads, &radiance.mesh_vertex_light, world_from_camera, view);
+  SLAM_CHECK_MSG(!(has_mirrors_ && radiance.window_view.enabled),
+                 "Renderer::Render: mirrors are not supported with lighting.window_view_in_camera");
+  RenderScene(radiance.quads, &radiance.mesh_vertex_light, &radiance.window_view, world_from_camera, view);
 }
 
 void Renderer::Render(const std::vector<cv::Mat>& radiance, const Rigid3d& world_from_camera,
                       RenderedView* view) const {
   SLAM_CHECK_MSG(scene_.meshes.empty(), "Renderer::Render: a scene with meshes needs its SessionRadiance");
-  RenderScene(radiance, nullptr, world_from_camera, view);
+  RenderScene(radiance, nullptr, nullptr, world_from_camera, view);
 }
 
 void Renderer::RenderScene(const std::vector<cv::Mat>& radiance,
                            const std::vector<std::vector<cv::Vec3f>>* mesh_light,
-                           const Rigid3d& world_from_camera, RenderedView* view) const {
+                           const WindowViewRadiance* window_view, const Rigid3d& world_from_camera,
+                           RenderedView* view) const {
   SLAM_CHECK(radiance.size() == scene_.quads.size());
   const Rigid3d camera_from_world = world_from_camera.Inverse();
   const cv::Size size(camera_.width, camera_.height);
@@ -341,6 +344,7 @@ void Renderer::RenderScene(const std::vector<cv::Mat>& radiance,
   }
   const int num_quads = static_cast<int>(scene_.quads.size());
   const double inv_fx = 1.0 / camera_.fx;
+  const Eigen::Matrix3d world_from_camera_rotation = world_from_camera.rotation.toRotationMatrix();
   for (int row = 0; row < size.height; ++row) {
     const int* id_row = view->surface_id.ptr<int>(row);
     float* depth_row = view->depth_m.ptr<float>(row);
@@ -362,6 +366,11 @@ void Renderer::RenderScene(const std::vector<cv::Mat>& radiance,
       Sample(s, textures[id], col, row, z, out);
       depth_row[col] = static_cast<float>(z);
       const double dx = (col - camera_.cx) * inv_fx;
+      if (window_view != nullptr && window_view->enabled && scene_.quads[id].emission == Emission::kSky) {
+        // The pane mask times what this pixel's ray sees outside.
+        const cv::Vec3f seen = window_view->Seen(id, world_from_camera_rotation * Eigen::Vector3d(dx, dy, 1.0));
+        for (int c = 0; c < 3; ++c) out[c] *= seen[c];
+      }
       const double n_dot_d = s.cos_a * col + s.cos_b * row + s.cos_c;
       cos_out[col] = static_cast<float>(std::abs(n_dot_d) / std::sqrt(dx * dx + ray_base));
     }

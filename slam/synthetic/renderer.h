@@ -61,8 +61,11 @@ class Renderer {
                  QuadSetup* setup) const;
   void RasterizeDepth(const QuadSetup& setup, cv::Mat* inv_depth, cv::Mat* ids,
                       const MirrorMask* mask = nullptr) const;
+  // `window_view`: what the windows show by viewing direction (null or
+  // disabled: their textures as they are).
   void RenderScene(const std::vector<cv::Mat>& radiance,
                    const std::vector<std::vector<cv::Vec3f>>* mesh_light,
+                   const WindowViewRadiance* window_view,
                    const Rigid3d& world_from_camera, RenderedView* view) const;
   // Draws the meshes' triangles into view->depth_m (inverse depth, the
   // quads' already there), marks their pixels in view->surface_id and

@@ -7,6 +7,8 @@
 #include "slam/core/check.h"
 #include "slam/synthetic/apartment.h"
 #include "slam/synthetic/generator_config.h"
+#include "slam/synthetic/renderer.h"
+#include "small_camera.h"
 
 namespace duskmap {
 namespace {
@@ -323,6 +325,70 @@ TEST(LightingOptions, ReflectancesOutsideZeroToOneAreRefused) {
     options.ground_reflectance = 0.2;
   }
   EXPECT_NO_THROW(options.Check());
+}
+
+// The camera sees what the window's light comes from: through the pane, by
+// each pixel's elevation, the ground below the horizon, the facades up to
+// their top and the sky above (window_view_in_camera); the old behaviour
+// (the texture times the sky everywhere) with it off.
+TEST(WindowView, TheCameraSeesGroundFacadesAndSkyThroughThePane) {
+  const Scene scene = OneWindowScene();
+  LightingOptions options;
+  options.window_view_obstructed = true;
+  options.window_view_in_camera = true;
+  options.horizon_elevation_deg = 8.0;
+  const SessionLighting l = ComputeSessionLighting(options, scene, 16.75);
+  const SessionRadiance radiance = PrepareSessionRadiance(scene, l, options);
+  ASSERT_TRUE(radiance.window_view.enabled);
+  EXPECT_EQ(radiance.quads[0].at<cv::Vec3f>(3, 3), cv::Vec3f(1, 1, 1));  // a pane mask, not radiance
+  const WindowViewRadiance& view = radiance.window_view;
+  // The three are different lights, so the rows below tell them apart.
+  EXPECT_GT(cv::norm(view.ground_nits_bgr - view.facade_nits_bgr[0]), 0.05 * cv::norm(view.sky_nits_bgr));
+  EXPECT_GT(cv::norm(view.sky_nits_bgr - view.facade_nits_bgr[0]), 0.05 * cv::norm(view.sky_nits_bgr));
+
+  // Level, 2 m in front of the window (which spans -16.7 to +16.7 degrees
+  // of elevation from here), looking at it along -x.
+  const Rigid3d world_from_camera(CameraRotationFromYawPitchRoll(M_PI, 0.0, 0.0), Eigen::Vector3d(2.0, 0.0, 1.5));
+  const PinholeCamera camera = SmallCamera();
+  const auto row_at = [&](double elevation_deg) {
+    return static_cast<int>(std::lround(camera.cy - camera.fy * std::tan(elevation_deg * M_PI / 180.0)));
+  };
+  const int col = static_cast<int>(camera.cx);
+  RenderedView seen;
+  Renderer(scene, camera).Render(radiance, world_from_camera, &seen);
+  const auto expect_at = [&](double elevation_deg, const cv::Vec3f& nits) {
+    const cv::Vec3f v = seen.radiance.at<cv::Vec3f>(row_at(elevation_deg), col);
+    EXPECT_EQ(seen.surface_id.at<int>(row_at(elevation_deg), col), 0) << elevation_deg;
+    EXPECT_LT(cv::norm(v - nits), 1e-4 * cv::norm(nits)) << elevation_deg << " deg: " << v << " against " << nits;
+  };
+  expect_at(-8.0, view.ground_nits_bgr);
+  expect_at(4.0, view.facade_nits_bgr[0]);
+  expect_at(12.0, view.sky_nits_bgr);
+
+  options.window_view_in_camera = false;
+  const SessionRadiance open = PrepareSessionRadiance(scene, l, options);
+  EXPECT_FALSE(open.window_view.enabled);
+  Renderer(scene, camera).Render(open, world_from_camera, &seen);
+  for (const double elevation : {-8.0, 4.0, 12.0}) {
+    const cv::Vec3f v = seen.radiance.at<cv::Vec3f>(row_at(elevation), col);
+    EXPECT_LT(cv::norm(v - l.sky_nits_bgr), 1e-4 * cv::norm(l.sky_nits_bgr)) << elevation;
+  }
+}
+
+TEST(WindowView, InTheCameraNeedsTheObstructedViewAndNoMirrors) {
+  LightingOptions options;
+  options.window_view_in_camera = true;
+  EXPECT_THROW(options.Check(), ConfigError);
+  options.window_view_obstructed = true;
+  EXPECT_NO_THROW(options.Check());
+  GeneratorConfig config;
+  config.lighting = options;
+  EXPECT_NO_THROW(config.Check());
+  config.scene.window_reflectance = 0.08;
+  EXPECT_THROW(config.Check(), ConfigError);
+  config.scene.window_reflectance = 0.0;
+  config.scene.floor_reflectance = 0.04;
+  EXPECT_THROW(config.Check(), ConfigError);
 }
 
 }  // namespace
