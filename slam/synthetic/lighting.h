@@ -96,7 +96,6 @@ IrradianceParts ComputeDirectIrradiance(const Scene& scene, const SessionLightin
                                         const Eigen::Vector3d& point, const Eigen::Vector3d& normal,
                                         int room, int receiver_quad);
 
-// What a session's frames are rendered with (renderer.h).
 // What the camera sees through the windows when
 // LightingOptions::window_view_in_camera is on: the radiance a viewing ray
 // finds outside, by its elevation (the facades and the ground at a distance
@@ -117,6 +116,7 @@ struct WindowViewRadiance {
   cv::Vec3f Seen(int quad, const Eigen::Vector3d& direction_in_world) const;
 };
 
+// What a session's frames are rendered with (renderer.h).
 struct SessionRadiance {
   // The radiance texture (nits, CV_32FC3) of every quad: albedo x light map
   // / pi for diffuse quads (light map with ambient term), the sky for
