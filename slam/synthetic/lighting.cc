@@ -252,9 +252,7 @@ cv::Vec3f WindowViewRadiance::Seen(int quad, const Eigen::Vector3d& direction_in
   if (!obstructed[i]) return sky_nits_bgr;
   const double horizontal = std::hypot(direction_in_world.x(), direction_in_world.y());
   if (direction_in_world.z() < 0.0) return ground_nits_bgr;
-  if (direction_in_world.z() < horizontal * std::tan(facade_top_elevation_deg * kPi / 180.0)) {
-    return facade_nits_bgr[i];
-  }
+  if (direction_in_world.z() < horizontal * tan_facade_top) return facade_nits_bgr[i];
   return sky_nits_bgr;
 }
 
@@ -476,7 +474,7 @@ SessionRadiance PrepareSessionRadiance(const Scene& scene, const SessionLighting
   if (pane_mask) {
     WindowViewRadiance& view = session.window_view;
     view.enabled = true;
-    view.facade_top_elevation_deg = lighting.facade_top_elevation_deg;
+    view.tan_facade_top = std::tan(lighting.facade_top_elevation_deg * kPi / 180.0);
     view.sky_nits_bgr = lighting.sky_nits_bgr;
     view.ground_nits_bgr = lighting.ground_nits_bgr;
     view.facade_nits_bgr.resize(scene.quads.size(), cv::Vec3f(0, 0, 0));

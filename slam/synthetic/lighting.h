@@ -102,7 +102,7 @@ IrradianceParts ComputeDirectIrradiance(const Scene& scene, const SessionLightin
 // where the camera's own displacement does not matter).
 struct WindowViewRadiance {
   bool enabled = false;
-  double facade_top_elevation_deg = 0.0;
+  double tan_facade_top = 0.0;  // tangent of the facades' top elevation
   cv::Vec3f sky_nits_bgr = cv::Vec3f(0, 0, 0);
   cv::Vec3f ground_nits_bgr = cv::Vec3f(0, 0, 0);
   // Per scene quad: the facades' radiance seen through that window (a sunlit

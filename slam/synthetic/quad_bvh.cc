@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 
 #include "slam/core/check.h"
 
@@ -19,29 +18,31 @@ constexpr double kPadM = 1e-6;
 
 }  // namespace
 
-QuadBvh::QuadBvh(const std::vector<Quad>& quads, const std::vector<int>& indices)
-    : quads_(&quads), ids_(indices) {
-  for (const int i : ids_) {
+QuadBvh::QuadBvh(const std::vector<Quad>& quads, const std::vector<int>& indices) : quads_(&quads) {
+  std::vector<BuildEntry> entries(indices.size());
+  for (size_t k = 0; k < indices.size(); ++k) {
+    const int i = indices[k];
     SLAM_CHECK_MSG(i >= 0 && i < static_cast<int>(quads.size()), "QuadBvh: quad index out of range");
+    const Quad& q = quads[static_cast<size_t>(i)];
+    entries[k] = {i, q.PointAt(0.5 * q.size_u_m, 0.5 * q.size_v_m)};
   }
-  if (ids_.empty()) return;
-  std::vector<Eigen::Vector3d> centroids(ids_.size());
-  for (size_t k = 0; k < ids_.size(); ++k) {
-    const Quad& q = quads[static_cast<size_t>(ids_[k])];
-    centroids[k] = q.PointAt(0.5 * q.size_u_m, 0.5 * q.size_v_m);
+  if (!entries.empty()) {
+    nodes_.reserve(2 * entries.size());
+    Build(0, static_cast<int>(entries.size()), &entries);
   }
-  nodes_.reserve(2 * ids_.size());
-  Build(0, static_cast<int>(ids_.size()), &centroids);
+  ids_.reserve(entries.size());
+  for (const BuildEntry& e : entries) ids_.push_back(e.id);
 }
 
-int QuadBvh::Build(int first, int count, std::vector<Eigen::Vector3d>* centroids) {
+int QuadBvh::Build(int first, int count, std::vector<BuildEntry>* entries) {
   const int index = static_cast<int>(nodes_.size());
   nodes_.push_back(Node());
+  const auto begin = entries->begin() + first, end = begin + count;
   Eigen::Vector3d box_min = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector3d box_max = -box_min;
   Eigen::Vector3d centre_min = box_min, centre_max = box_max;
-  for (int k = first; k < first + count; ++k) {
-    const Quad& q = (*quads_)[static_cast<size_t>(ids_[static_cast<size_t>(k)])];
+  for (auto e = begin; e != end; ++e) {
+    const Quad& q = (*quads_)[static_cast<size_t>(e->id)];
     for (const double s : {0.0, q.size_u_m}) {
       for (const double t : {0.0, q.size_v_m}) {
         const Eigen::Vector3d corner = q.PointAt(s, t);
@@ -49,38 +50,28 @@ int QuadBvh::Build(int first, int count, std::vector<Eigen::Vector3d>* centroids
         box_max = box_max.cwiseMax(corner);
       }
     }
-    centre_min = centre_min.cwiseMin((*centroids)[static_cast<size_t>(k)]);
-    centre_max = centre_max.cwiseMax((*centroids)[static_cast<size_t>(k)]);
+    centre_min = centre_min.cwiseMin(e->centre);
+    centre_max = centre_max.cwiseMax(e->centre);
   }
-  nodes_[static_cast<size_t>(index)].box_min = box_min.array() - kPadM;
-  nodes_[static_cast<size_t>(index)].box_max = box_max.array() + kPadM;
+  Node& node = nodes_[static_cast<size_t>(index)];
+  node.box_min = box_min.array() - kPadM;
+  node.box_max = box_max.array() + kPadM;
   int axis = 0;
   (centre_max - centre_min).maxCoeff(&axis);
   if (count <= kMaxLeafQuads || centre_max[axis] <= centre_min[axis]) {
-    nodes_[static_cast<size_t>(index)].first_or_second = first;
-    nodes_[static_cast<size_t>(index)].count = count;
+    node.first_or_second = first;
+    node.count = count;
     return index;
   }
   // Median split along the axis; ties broken by the quad index, so the tree
-  // does not depend on the sort's implementation.
-  std::vector<int> order(static_cast<size_t>(count));
-  std::iota(order.begin(), order.end(), first);
+  // does not depend on the partition's implementation.
   const int half = count / 2;
-  std::nth_element(order.begin(), order.begin() + half, order.end(), [&](int a, int b) {
-    const double ca = (*centroids)[static_cast<size_t>(a)][axis], cb = (*centroids)[static_cast<size_t>(b)][axis];
-    return ca < cb || (ca == cb && ids_[static_cast<size_t>(a)] < ids_[static_cast<size_t>(b)]);
+  std::nth_element(begin, begin + half, end, [axis](const BuildEntry& a, const BuildEntry& b) {
+    return a.centre[axis] < b.centre[axis] || (a.centre[axis] == b.centre[axis] && a.id < b.id);
   });
-  std::vector<int> ids(static_cast<size_t>(count));
-  std::vector<Eigen::Vector3d> centres(static_cast<size_t>(count));
-  for (int k = 0; k < count; ++k) {
-    ids[static_cast<size_t>(k)] = ids_[static_cast<size_t>(order[static_cast<size_t>(k)])];
-    centres[static_cast<size_t>(k)] = (*centroids)[static_cast<size_t>(order[static_cast<size_t>(k)])];
-  }
-  std::copy(ids.begin(), ids.end(), ids_.begin() + first);
-  std::copy(centres.begin(), centres.end(), centroids->begin() + first);
-  Build(first, half, centroids);
-  const int second = Build(first + half, count - half, centroids);
-  nodes_[static_cast<size_t>(index)].first_or_second = second;
+  Build(first, half, entries);
+  const int second = Build(first + half, count - half, entries);
+  nodes_[static_cast<size_t>(index)].first_or_second = second;  // `node` may have moved
   return index;
 }
 

@@ -39,7 +39,14 @@ class QuadBvh {
     int first_or_second = 0;
     int count = 0;  // 0 for an inner node
   };
-  int Build(int first, int count, std::vector<Eigen::Vector3d>* centroids);
+  // A quad while building: its scene index and its centre.
+  struct BuildEntry {
+    int id = -1;
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  };
+  // Builds the node over entries[first, first + count), partitioning them
+  // in place, and returns its index.
+  int Build(int first, int count, std::vector<BuildEntry>* entries);
 
   const std::vector<Quad>* quads_ = nullptr;
   std::vector<Node> nodes_;

@@ -345,6 +345,7 @@ void Renderer::RenderScene(const std::vector<cv::Mat>& radiance,
   const int num_quads = static_cast<int>(scene_.quads.size());
   const double inv_fx = 1.0 / camera_.fx;
   const Eigen::Matrix3d world_from_camera_rotation = world_from_camera.rotation.toRotationMatrix();
+  const WindowViewRadiance* panes = window_view != nullptr && window_view->enabled ? window_view : nullptr;
   for (int row = 0; row < size.height; ++row) {
     const int* id_row = view->surface_id.ptr<int>(row);
     float* depth_row = view->depth_m.ptr<float>(row);
@@ -366,9 +367,9 @@ void Renderer::RenderScene(const std::vector<cv::Mat>& radiance,
       Sample(s, textures[id], col, row, z, out);
       depth_row[col] = static_cast<float>(z);
       const double dx = (col - camera_.cx) * inv_fx;
-      if (window_view != nullptr && window_view->enabled && scene_.quads[id].emission == Emission::kSky) {
+      if (panes != nullptr && scene_.quads[id].emission == Emission::kSky) {
         // The pane mask times what this pixel's ray sees outside.
-        const cv::Vec3f seen = window_view->Seen(id, world_from_camera_rotation * Eigen::Vector3d(dx, dy, 1.0));
+        const cv::Vec3f seen = panes->Seen(id, world_from_camera_rotation * Eigen::Vector3d(dx, dy, 1.0));
         for (int c = 0; c < 3; ++c) out[c] *= seen[c];
       }
       const double n_dot_d = s.cos_a * col + s.cos_b * row + s.cos_c;
