@@ -116,7 +116,14 @@ int WriteExperimentReport(const ReportRequest& request) {
     std::cout << "agreement with the paper: single-session maps deviate by "
               << number(single->mean_abs_deviation, 1) << " points, multi-session maps by "
               << number(multi->mean_abs_deviation, 1) << " (held out), Spearman rho "
-              << number(agreement.ranking.spearman_rho, 2) << ", findings reproduced "
+              << number(agreement.ranking.spearman_rho, 2);
+    const RankAgreement& ranking = agreement.ranking;
+    if (!ranking.close_pairs.empty() && ranking.spearman_rho_low && ranking.spearman_rho_high) {
+      std::cout << " (" << FormatFixed(*ranking.spearman_rho_low, 2) << " to "
+                << FormatFixed(*ranking.spearman_rho_high, 2) << " over the orders of features within "
+                << FormatFixed(kRankResolutionPts, 1) << " points)";
+    }
+    std::cout << ", findings reproduced "
               << agreement.FindingsReproduced() << "/" << agreement.FindingsDecided() << " ("
               << (request.output_dir / "agreement.md").string() << ")\n";
   }

@@ -69,6 +69,22 @@ RankAgreement Ranking(const ReportTable* relocalization) {
     ranking.paper_mean_pct.push_back(*paper);
   }
   ranking.spearman_rho = SpearmanRho(ranking.measured_mean_pct, ranking.paper_mean_pct);
+  const auto range = SpearmanRhoRange(ranking.measured_mean_pct, ranking.paper_mean_pct,
+                                      kRankResolutionPts);
+  if (range) {
+    ranking.spearman_rho_low = range->first;
+    ranking.spearman_rho_high = range->second;
+  }
+  const std::vector<double>& m = ranking.measured_mean_pct;
+  for (size_t i = 0; i < m.size(); ++i) {
+    for (size_t j = i + 1; j < m.size(); ++j) {
+      const double gap = std::abs(m[i] - m[j]);
+      if (gap >= kRankResolutionPts) continue;
+      const bool i_higher = m[i] >= m[j];
+      ranking.close_pairs.push_back({ranking.features[i_higher ? i : j],
+                                     ranking.features[i_higher ? j : i], gap});
+    }
+  }
   return ranking;
 }
 
@@ -183,6 +199,41 @@ std::optional<double> SpearmanRho(const std::vector<double>& a, const std::vecto
   return covariance / std::sqrt(variance_a * variance_b);
 }
 
+std::optional<std::pair<double, double>> SpearmanRhoRange(const std::vector<double>& measured,
+                                                          const std::vector<double>& reference,
+                                                          double resolution) {
+  if (!SpearmanRho(measured, reference) || measured.size() > kMaxFeaturesForRhoRange) {
+    return std::nullopt;
+  }
+  const size_t n = measured.size();
+  std::vector<size_t> order(n);  // order[k]: the value ranked k-th from the top
+  std::iota(order.begin(), order.end(), 0);
+  std::optional<std::pair<double, double>> range;
+  std::vector<double> scores(n);
+  do {
+    // An order may not put a value below one it exceeds by `resolution` or more.
+    bool allowed = true;
+    for (size_t above = 0; above < n && allowed; ++above) {
+      for (size_t below = above + 1; below < n; ++below) {
+        if (measured[order[below]] - measured[order[above]] >= resolution) {
+          allowed = false;
+          break;
+        }
+      }
+    }
+    if (!allowed) continue;
+    for (size_t k = 0; k < n; ++k) scores[order[k]] = static_cast<double>(n - k);
+    const double rho = *SpearmanRho(scores, reference);
+    if (!range) {
+      range = std::make_pair(rho, rho);
+    } else {
+      range->first = std::min(range->first, rho);
+      range->second = std::max(range->second, rho);
+    }
+  } while (std::next_permutation(order.begin(), order.end()));
+  return range;
+}
+
 AgreementReport ComputeAgreement(const std::vector<ReportTable>& tables,
                                  const SingleMapMatrix& single_maps, const PaperReference& paper) {
   const ReportTable* relocalization = FindTable(tables, kTableRelocalizationPct);
@@ -248,6 +299,15 @@ std::string AgreementToMarkdown(const AgreementReport& agreement) {
     }
     out << ")";
   }
+  if (!r.close_pairs.empty() && r.spearman_rho_low && r.spearman_rho_high) {
+    out << "; within " << FormatFixed(kRankResolutionPts, 1)
+        << " points of each other, an order one run does not decide:";
+    for (const ClosePair& pair : r.close_pairs) {
+      out << " " << pair.higher << "/" << pair.lower << " " << FormatFixed(pair.gap_pts, 1);
+    }
+    out << "; ρ over the orders they allow " << FormatFixed(*r.spearman_rho_low, 2) << " to "
+        << FormatFixed(*r.spearman_rho_high, 2);
+  }
   out << "\n\n";
   const NightMinusDay& n = agreement.night_minus_day;
   if (!n.night_row.empty()) {
@@ -299,7 +359,15 @@ nlohmann::json AgreementToJson(const AgreementReport& agreement) {
   json["ranking"] = {{"features", agreement.ranking.features},
                      {"measured_mean_pct", agreement.ranking.measured_mean_pct},
                      {"paper_mean_pct", agreement.ranking.paper_mean_pct},
-                     {"spearman_rho", OptionalJson(agreement.ranking.spearman_rho)}};
+                     {"spearman_rho", OptionalJson(agreement.ranking.spearman_rho)},
+                     {"spearman_rho_low", OptionalJson(agreement.ranking.spearman_rho_low)},
+                     {"spearman_rho_high", OptionalJson(agreement.ranking.spearman_rho_high)},
+                     {"rank_resolution_pts", kRankResolutionPts},
+                     {"close_pairs", nlohmann::json::array()}};
+  for (const ClosePair& pair : agreement.ranking.close_pairs) {
+    json["ranking"]["close_pairs"].push_back(
+        {{"higher", pair.higher}, {"lower", pair.lower}, {"gap_pts", pair.gap_pts}});
+  }
   const NightMinusDay& n = agreement.night_minus_day;
   json["night_minus_day"] = {{"night_row", n.night_row},
                              {"day_row", n.day_row},

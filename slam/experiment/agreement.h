@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "slam/experiment/paper_findings.h"
@@ -43,13 +44,34 @@ struct FeatureRatio {
   double ratio = 0.0;  // measured / paper
 };
 
+// Measured feature means closer than this are not an order one run decides:
+// the same config with another seed moved the features' single-map means by
+// up to 0.7 points and the gaps between them by up to 1.3 (docs/experiments.md,
+// "Agreement with the paper").
+inline constexpr double kRankResolutionPts = 1.0;
+
+// Two ranked features whose measured means lie within kRankResolutionPts.
+struct ClosePair {
+  std::string higher;  // the one measured higher (first in the ranked list on a tie)
+  std::string lower;
+  double gap_pts = 0.0;
+};
+
 // The features ordered by their mean single-session-map re-localization.
 struct RankAgreement {
   std::vector<std::string> features;  // those with both values in every single-session row
   std::vector<double> measured_mean_pct;
   std::vector<double> paper_mean_pct;
   std::optional<double> spearman_rho;  // nullopt below 3 features
+  // Spearman's rho over every measured order that keeps features more than
+  // kRankResolutionPts apart in their measured order and lets closer ones
+  // swap: how far the ranking is decided. Both equal spearman_rho when no two
+  // features are that close; nullopt with it, or above kMaxFeaturesForRhoRange.
+  std::optional<double> spearman_rho_low;
+  std::optional<double> spearman_rho_high;
+  std::vector<ClosePair> close_pairs;  // in the order of `features`
 };
+inline constexpr size_t kMaxFeaturesForRhoRange = 9;  // 9! orders at most
 
 // The latest single-session map minus the earliest, cumulative re-localization
 // averaged over the ranked features (the paper: map 6 - map 1 = +8.8 points).
@@ -97,6 +119,14 @@ AgreementReport ComputeAgreement(const std::vector<ReportTable>& tables,
 // Spearman's rank correlation (average ranks for ties); nullopt when the
 // sizes differ, below 3 values, or a side is constant.
 std::optional<double> SpearmanRho(const std::vector<double>& a, const std::vector<double>& b);
+
+// The lowest and highest SpearmanRho(order, reference) over the orders of
+// `measured` that keep every pair at least `resolution` apart as measured
+// (RankAgreement::spearman_rho_low/high); nullopt when SpearmanRho is, or
+// above kMaxFeaturesForRhoRange values.
+std::optional<std::pair<double, double>> SpearmanRhoRange(const std::vector<double>& measured,
+                                                          const std::vector<double>& reference,
+                                                          double resolution);
 
 std::string AgreementToMarkdown(const AgreementReport& agreement);
 nlohmann::json AgreementToJson(const AgreementReport& agreement);

@@ -62,6 +62,33 @@ TEST(SpearmanRho, MatchesHandComputedValues) {
   EXPECT_FALSE(SpearmanRho({1, 2, 3}, {1, 2}).has_value());
 }
 
+TEST(SpearmanRhoRange, LetsOnlyCloseValuesTradePlaces) {
+  // Measured order c > b > a gives rho 0.5 against the reference's c > a > b;
+  // a and b lie 0.5 apart, so with a resolution of 1 they may swap (rho 1).
+  const std::vector<double> measured = {10.0, 10.5, 20.0};
+  const std::vector<double> reference = {2.0, 1.0, 3.0};
+  auto range = SpearmanRhoRange(measured, reference, 1.0);
+  ASSERT_TRUE(range.has_value());
+  EXPECT_NEAR(range->first, 0.5, 1e-12);
+  EXPECT_NEAR(range->second, 1.0, 1e-12);
+  range = SpearmanRhoRange(measured, reference, 0.4);  // nothing that close: the one order
+  ASSERT_TRUE(range.has_value());
+  EXPECT_NEAR(range->first, 0.5, 1e-12);
+  EXPECT_NEAR(range->second, 0.5, 1e-12);
+  range = SpearmanRhoRange(measured, reference, 100.0);  // every order, the reversed one too
+  ASSERT_TRUE(range.has_value());
+  EXPECT_NEAR(range->first, -1.0, 1e-12);
+  EXPECT_NEAR(range->second, 1.0, 1e-12);
+  // A tie is two orders; the average-rank rho (0.87) lies between them.
+  range = SpearmanRhoRange({1.0, 1.0, 2.0}, {1.0, 2.0, 3.0}, 0.5);
+  ASSERT_TRUE(range.has_value());
+  EXPECT_NEAR(range->first, 0.5, 1e-12);
+  EXPECT_NEAR(range->second, 1.0, 1e-12);
+  EXPECT_FALSE(SpearmanRhoRange({1, 2}, {1, 2}, 1.0).has_value());
+  const std::vector<double> ten = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10};
+  EXPECT_FALSE(SpearmanRhoRange(ten, ten, 1.0).has_value());  // above kMaxFeaturesForRhoRange
+}
+
 TEST(ComputeAgreement, DeviationPerTablePartAndRole) {
   const AgreementReport agreement = ComputeAgreement({Relocalization()}, Matrix(true), Paper({}));
   const TableDeviation* single = agreement.FindDeviation(kDeviationSingleMaps);
@@ -91,6 +118,10 @@ TEST(ComputeAgreement, RankingAndNightMinusDay) {
   EXPECT_NEAR(ranking.paper_mean_pct[0], 75.0, 1e-12);
   // Measured order SI > SU > BK, the paper's SU > SI > BK: rho = 1 - 6*2/24.
   EXPECT_NEAR(*ranking.spearman_rho, 0.5, 1e-12);
+  // No two features within kRankResolutionPts (65, 75.7, 62.7): the one order.
+  EXPECT_TRUE(ranking.close_pairs.empty());
+  EXPECT_NEAR(*ranking.spearman_rho_low, 0.5, 1e-12);
+  EXPECT_NEAR(*ranking.spearman_rho_high, 0.5, 1e-12);
   // Map 3 - map 1: measured (5 + 7 + 6) / 3, paper (5 + 7 + 6) / 3.
   EXPECT_EQ(agreement.night_minus_day.night_row, "3");
   EXPECT_EQ(agreement.night_minus_day.day_row, "1");
@@ -183,6 +214,34 @@ TEST(ComputeAgreement, NoWrongRelocalizationNeedsGroundTruth) {
       << agreement.findings[0].measured;
 }
 
+TEST(ComputeAgreement, FeaturesWithinTheResolutionMayTradePlaces) {
+  // BK's single maps raised to a mean of 64.5, 0.5 below SU's 65.
+  ReportTable table = Relocalization();
+  table.SetMeasured("1", "BK", 59.5);
+  table.SetMeasured("2", "BK", 67.0);
+  table.SetMeasured("3", "BK", 67.0);
+  const AgreementReport agreement = ComputeAgreement({table}, Matrix(true), Paper({}));
+  const RankAgreement& ranking = agreement.ranking;
+  // Measured SI > SU > BK as before (rho 0.5); SI > BK > SU against the
+  // paper's SU > SI > BK gives 1 - 6*6/24 = -0.5.
+  EXPECT_NEAR(*ranking.spearman_rho, 0.5, 1e-12);
+  EXPECT_NEAR(*ranking.spearman_rho_low, -0.5, 1e-12);
+  EXPECT_NEAR(*ranking.spearman_rho_high, 0.5, 1e-12);
+  ASSERT_EQ(ranking.close_pairs.size(), 1u);
+  EXPECT_EQ(ranking.close_pairs[0].higher, "SU");
+  EXPECT_EQ(ranking.close_pairs[0].lower, "BK");
+  EXPECT_NEAR(ranking.close_pairs[0].gap_pts, 0.5, 1e-12);
+  const std::string markdown = AgreementToMarkdown(agreement);
+  EXPECT_NE(markdown.find("; within 1.0 points of each other, an order one run does not decide: "
+                          "SU/BK 0.5; ρ over the orders they allow -0.50 to 0.50"),
+            std::string::npos)
+      << markdown;
+  const nlohmann::json json = AgreementToJson(agreement);
+  EXPECT_DOUBLE_EQ(json.at("ranking").at("spearman_rho_low").get<double>(), -0.5);
+  EXPECT_DOUBLE_EQ(json.at("ranking").at("rank_resolution_pts").get<double>(), kRankResolutionPts);
+  EXPECT_EQ(json.at("ranking").at("close_pairs").at(0).at("lower"), "BK");
+}
+
 TEST(AgreementOutput, MarkdownAndJsonCarryTheNumbers) {
   const AgreementReport agreement =
       ComputeAgreement({Relocalization()}, Matrix(true),
@@ -192,6 +251,7 @@ TEST(AgreementOutput, MarkdownAndJsonCarryTheNumbers) {
             std::string::npos)
       << markdown;
   EXPECT_NE(markdown.find("Spearman ρ = 0.50 over 3 features"), std::string::npos);
+  EXPECT_EQ(markdown.find("an order one run does not decide"), std::string::npos);
   EXPECT_NE(markdown.find("+6.0 points (paper +6.0)"), std::string::npos);
   // A cell naming the closest-in-time row keeps the table's columns.
   AgreementReport piped = agreement;
