@@ -63,7 +63,7 @@ struct RankAgreement {
   std::vector<double> measured_mean_pct;
   std::vector<double> paper_mean_pct;
   std::optional<double> spearman_rho;  // nullopt below 3 features
-  // Spearman's rho over every measured order that keeps features more than
+  // Spearman's rho over every measured order that keeps features at least
   // kRankResolutionPts apart in their measured order and lets closer ones
   // swap: how far the ranking is decided. Both equal spearman_rho when no two
   // features are that close; nullopt with it, or above kMaxFeaturesForRhoRange.
