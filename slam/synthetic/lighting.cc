@@ -250,8 +250,8 @@ void LightingOptions::Check() const {
 cv::Vec3f WindowViewRadiance::Seen(int quad, const Eigen::Vector3d& direction_in_world) const {
   const size_t i = static_cast<size_t>(quad);
   if (!obstructed[i]) return sky_nits_bgr;
-  const double horizontal = std::hypot(direction_in_world.x(), direction_in_world.y());
   if (direction_in_world.z() < 0.0) return ground_nits_bgr;
+  const double horizontal = std::hypot(direction_in_world.x(), direction_in_world.y());
   if (direction_in_world.z() < horizontal * tan_facade_top) return facade_nits_bgr[i];
   return sky_nits_bgr;
 }
