@@ -13,21 +13,37 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+// Blur of the grey image before its gradients, and the scale the oriented
+// gradient maps are brought to before the rings' smoothing: OpenCV's DAISY
+// (the reference's SURF/DAISY runs) smooths the image by 0.5 and the maps by
+// sqrt(1.6^2 - 0.5^2).
+constexpr double kImageSigma = 0.5;
+constexpr double kBaseSigma = 1.6;
+
 double LayerSigma(const DaisyOptions& o, int layer) {
   return o.radius_px * (layer + 1) / (2.0 * o.rings);
 }
 
+// Gaussian blur with the reference's kernel: (int)(5 sigma) taps, made odd,
+// at least 3 (the tails beyond about 2.5 sigma are cut).
 void GaussianSmooth(const cv::Mat& in, double sigma, cv::Mat* out) {
-  const int ksize = 2 * static_cast<int>(std::ceil(3.0 * sigma)) + 1;
+  int ksize = std::max(3, static_cast<int>(5.0 * sigma));
+  if (ksize % 2 == 0) ++ksize;
   cv::GaussianBlur(in, *out, cv::Size(ksize, ksize), sigma, sigma, cv::BORDER_REPLICATE);
 }
 
-// Bilinear sample of all channels of `map` at (x, y), clamped to the image.
+// Bilinear sample of all channels of `map` at (x, y). A point whose 2x2
+// neighbourhood is not at least one pixel inside the right and bottom edges,
+// or that lies left of or above the image, gives a zero histogram, as in the
+// reference.
 void SampleHistogram(const cv::Mat& map, float x, float y, int channels, float* out) {
-  x = std::clamp(x, 0.0f, static_cast<float>(map.cols - 1));
-  y = std::clamp(y, 0.0f, static_cast<float>(map.rows - 1));
+  if (!(x >= 0.0f && y >= 0.0f) || static_cast<int>(x) > map.cols - 3 ||
+      static_cast<int>(y) > map.rows - 3) {
+    std::fill(out, out + channels, 0.0f);
+    return;
+  }
   const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
-  const int x1 = std::min(x0 + 1, map.cols - 1), y1 = std::min(y0 + 1, map.rows - 1);
+  const int x1 = x0 + 1, y1 = y0 + 1;
   const float ax = x - x0, ay = y - y0;
   const float* p00 = map.ptr<float>(y0) + x0 * channels;
   const float* p01 = map.ptr<float>(y0) + x1 * channels;
@@ -55,8 +71,9 @@ int DaisyDimension(const DaisyOptions& o) { return (1 + o.rings * o.ring_points)
 
 DaisyMaps ComputeDaisyMaps(const cv::Mat& gray8, const DaisyOptions& options) {
   options.Check();
-  cv::Mat image, gx, gy;
-  gray8.convertTo(image, CV_32F, 1.0 / 255.0);
+  cv::Mat unit, image, gx, gy;
+  gray8.convertTo(unit, CV_32F, 1.0 / 255.0);
+  cv::GaussianBlur(unit, image, cv::Size(5, 5), kImageSigma, kImageSigma, cv::BORDER_REPLICATE);
   cv::Sobel(image, gx, CV_32F, 1, 0, 1, 0.5, 0.0, cv::BORDER_REPLICATE);
   cv::Sobel(image, gy, CV_32F, 0, 1, 1, 0.5, 0.0, cv::BORDER_REPLICATE);
   const int h = options.orientations;
@@ -76,9 +93,11 @@ DaisyMaps ComputeDaisyMaps(const cv::Mat& gray8, const DaisyOptions& options) {
       }
     }
   }
+  cv::Mat base;
+  GaussianSmooth(oriented, std::sqrt(kBaseSigma * kBaseSigma - kImageSigma * kImageSigma), &base);
   DaisyMaps maps;
   maps.layers.resize(options.rings);
-  GaussianSmooth(oriented, LayerSigma(options, 0), &maps.layers[0]);
+  GaussianSmooth(base, LayerSigma(options, 0), &maps.layers[0]);
   for (int i = 1; i < options.rings; ++i) {
     const double s0 = LayerSigma(options, i - 1), s1 = LayerSigma(options, i);
     GaussianSmooth(maps.layers[i - 1], std::sqrt(s1 * s1 - s0 * s0), &maps.layers[i]);

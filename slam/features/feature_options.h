@@ -93,7 +93,8 @@ struct DaisyOptions {
   int rings = 3;            // rings of histograms around the centre
   int ring_points = 8;      // histograms per ring
   int orientations = 8;     // orientation bins per histogram
-  bool normalize = true;    // unit-normalise each histogram (Tola et al.'s partial normalisation)
+  bool normalize = false;   // unit-normalise each histogram (Tola et al.'s partial normalisation;
+                            // off in OpenCV's default, which the paper's runs used)
   bool use_orientation = false;  // rotate the grid to the keypoint angle (OpenCV default: off)
   void Check() const;
 };

@@ -15,15 +15,23 @@
 
 namespace duskmap {
 
+// Side in pixels of the box filter of `layer` (0 to octave_layers + 1) in
+// `octave`: 9, 15, 21, 27 in octave 0, each octave doubling the previous
+// one's (18, 30, 42, 54; 36, ...), as OpenCV's SURF builds its scale space
+// (Bay et al.'s paper steps octave o by 6 * 2^o from 15 instead: 15, 27, 39,
+// 51). Octave o is sampled every 2^o pixels.
+int SurfFilterSide(int octave, int layer);
+
 // Fast-Hessian keypoints, the `max_features` strongest, with orientation
 // (angle 0 when options.upright).
 std::vector<cv::KeyPoint> DetectSurfKeypoints(const IntegralImage& integral,
                                               const SurfOptions& options, int max_features);
 
 // One CV_32F row (64 or 128 values, unit L2 norm, or all zero on a flat
-// patch) per keypoint, oriented by KeyPoint.angle.
-cv::Mat DescribeSurf(const IntegralImage& integral, const std::vector<cv::KeyPoint>& keypoints,
-                     bool extended);
+// patch) per keypoint of the 8-bit grey image, oriented by KeyPoint.angle
+// (axis-aligned when `upright`).
+cv::Mat DescribeSurf(const cv::Mat& gray, const std::vector<cv::KeyPoint>& keypoints,
+                     bool extended, bool upright);
 
 class SurfExtractor : public FeatureExtractor {
  public:

@@ -13,48 +13,56 @@ namespace {
 
 constexpr float kPi = 3.14159265358979f;
 
-// Side of the box filter of layer `layer` in octave `octave` (9, 15, 21, 27;
-// 15, 27, 39, 51; ...).
-int FilterSize(int octave, int layer) { return 3 * ((2 << octave) * (layer + 1) + 1); }
-
 // Corner offsets (into the integral table, relative to the filter's top-left
 // corner) and weights of the boxes of the three second-derivative filters.
 struct BoxFilter {
   struct Box {
     std::array<int, 4> corner;  // (y0,x0), (y0,x1), (y1,x0), (y1,x1)
-    float weight;
+    float weight;               // +-1 or -3 over the box's area in pixels
   };
   std::array<Box, 2> dxx, dyy;
   std::array<Box, 4> dxy;
   int size = 0;
-  // Each response is a difference of box means (sum / box area), as in
-  // OpenCV's SURF, so that hessian_threshold keeps the reference's scale
-  // (the paper's 100 is a threshold on OpenCV's responses).
-  float inv_lobe_area_dd = 0.0f;  // dxx, dyy lobes: lobe x (2 lobe - 1)
-  float inv_lobe_area_dxy = 0.0f;  // dxy quadrants: lobe x lobe
 };
 
-BoxFilter::Box MakeBox(int x0, int y0, int x1, int y1, float weight, int stride) {
-  return {{y0 * stride + x0, y0 * stride + x1, y1 * stride + x0, y1 * stride + x1}, weight};
+// The size-9 filters' boxes (x0, y0, x1, y1, weight), pixel edges: Dxx is
+// three 3x5 lobes weighted +1 -2 +1, Dxy four 3x3 quadrants around a centre
+// row and column of zeros. Larger filters scale every edge by size / 9,
+// rounded, so that lobes keep whole pixels (size 15: 5x9 lobes; 18: 6x10).
+// Each lobe's weight is divided by its area: a response is a difference of
+// box means, which is the scale on which OpenCV's SURF applies its Hessian
+// threshold (the paper's 100).
+BoxFilter::Box MakeBox(int size, std::array<int, 4> edges9, float weight, int stride) {
+  const float ratio = static_cast<float>(size) / 9.0f;
+  std::array<int, 4> e{};
+  for (int k = 0; k < 4; ++k) e[k] = static_cast<int>(std::lround(ratio * edges9[k]));
+  const int x0 = e[0], y0 = e[1], x1 = e[2], y1 = e[3];
+  return {{y0 * stride + x0, y0 * stride + x1, y1 * stride + x0, y1 * stride + x1},
+          weight};
+}
+
+float BoxArea(int size, std::array<int, 4> edges9) {
+  const float ratio = static_cast<float>(size) / 9.0f;
+  const long w = std::lround(ratio * edges9[2]) - std::lround(ratio * edges9[0]);
+  const long h = std::lround(ratio * edges9[3]) - std::lround(ratio * edges9[1]);
+  return static_cast<float>(w * h);
 }
 
 BoxFilter MakeBoxFilter(int size, int stride) {
-  const int lobe = size / 3;
-  const int half = size / 2;
-  const int band0 = (lobe + 1) / 2, band1 = band0 + 2 * lobe - 1;
   BoxFilter f;
   f.size = size;
-  f.inv_lobe_area_dd = 1.0f / static_cast<float>(lobe * (2 * lobe - 1));
-  f.inv_lobe_area_dxy = 1.0f / static_cast<float>(lobe * lobe);
-  // Dyy: +1 over three stacked lobes, -3 over the middle one (net +1 -2 +1).
-  f.dyy = {MakeBox(band0, 0, band1, size, 1.0f, stride),
-           MakeBox(band0, lobe, band1, 2 * lobe, -3.0f, stride)};
-  f.dxx = {MakeBox(0, band0, size, band1, 1.0f, stride),
-           MakeBox(lobe, band0, 2 * lobe, band1, -3.0f, stride)};
-  f.dxy = {MakeBox(half - lobe, half - lobe, half, half, 1.0f, stride),
-           MakeBox(half + 1, half - lobe, half + 1 + lobe, half, -1.0f, stride),
-           MakeBox(half - lobe, half + 1, half, half + 1 + lobe, -1.0f, stride),
-           MakeBox(half + 1, half + 1, half + 1 + lobe, half + 1 + lobe, 1.0f, stride)};
+  // Dxx: +1 over the three lobes together, -3 over the middle one (net +1 -2
+  // +1); the three lobes have equal areas because 3 divides every size.
+  const float lobe_dd = BoxArea(size, {3, 2, 6, 7});
+  f.dxx = {MakeBox(size, {0, 2, 9, 7}, 1.0f / lobe_dd, stride),
+           MakeBox(size, {3, 2, 6, 7}, -3.0f / lobe_dd, stride)};
+  f.dyy = {MakeBox(size, {2, 0, 7, 9}, 1.0f / lobe_dd, stride),
+           MakeBox(size, {2, 3, 7, 6}, -3.0f / lobe_dd, stride)};
+  const float quadrant = BoxArea(size, {1, 1, 4, 4});
+  f.dxy = {MakeBox(size, {1, 1, 4, 4}, 1.0f / quadrant, stride),
+           MakeBox(size, {5, 1, 8, 4}, -1.0f / quadrant, stride),
+           MakeBox(size, {1, 5, 4, 8}, -1.0f / quadrant, stride),
+           MakeBox(size, {5, 5, 8, 8}, 1.0f / quadrant, stride)};
   return f;
 }
 
@@ -69,26 +77,31 @@ float ApplyBoxes(const uint32_t* origin, const std::array<BoxFilter::Box, N>& bo
   return sum;
 }
 
+// Sample i of an octave sampled every `step` pixels sits at pixel coordinate
+// i * step + (step - 1) / 2: the centre of a filter whose top-left pixel edge
+// is i * step - (size - step) / 2, for every layer of the octave (its sizes
+// are multiples of the step with the step's parity).
+float SampleCentre(int i, int step) { return i * step + 0.5f * (step - 1); }
+
 // Determinant-of-Hessian map of one layer on the octave's sampling grid;
 // samples whose filter does not fit in the image are 0.
 void ComputeResponseLayer(const IntegralImage& integral, int size, int step, int cols, int rows,
                           float* out) {
   const BoxFilter f = MakeBoxFilter(size, integral.stride());
-  const int half = size / 2;
+  const int offset = (size - step) / 2;  // sample position minus the filter's top-left edge
   std::fill(out, out + static_cast<size_t>(cols) * rows, 0.0f);
-  const int i0 = (half + step - 1) / step;
-  const int j0 = i0;
-  const int i1 = std::min(cols, (integral.width() - 1 - half) / step + 1);
-  const int j1 = std::min(rows, (integral.height() - 1 - half) / step + 1);
-  for (int j = j0; j < j1; ++j) {
-    const int y0 = j * step - half;
+  const int first = (offset + step - 1) / step;
+  const int i1 = std::min(cols, (integral.width() - size + offset) / step + 1);
+  const int j1 = std::min(rows, (integral.height() - size + offset) / step + 1);
+  for (int j = first; j < j1; ++j) {
+    const int y0 = j * step - offset;
     const uint32_t* row_origin = integral.data() + static_cast<size_t>(y0) * integral.stride();
     float* out_row = out + static_cast<size_t>(j) * cols;
-    for (int i = i0; i < i1; ++i) {
-      const uint32_t* origin = row_origin + (i * step - half);
-      const float dxx = ApplyBoxes(origin, f.dxx) * f.inv_lobe_area_dd;
-      const float dyy = ApplyBoxes(origin, f.dyy) * f.inv_lobe_area_dd;
-      const float dxy = ApplyBoxes(origin, f.dxy) * f.inv_lobe_area_dxy;
+    for (int i = first; i < i1; ++i) {
+      const uint32_t* origin = row_origin + (i * step - offset);
+      const float dxx = ApplyBoxes(origin, f.dxx);
+      const float dyy = ApplyBoxes(origin, f.dyy);
+      const float dxy = ApplyBoxes(origin, f.dxy);
       out_row[i] = dxx * dyy - 0.81f * dxy * dxy;
     }
   }
@@ -133,12 +146,15 @@ bool Interpolate(const Octave& o, int l, int i, int j, cv::KeyPoint* kp) {
   const cv::Matx33f h(hxx, hxy, hxs, hxy, hyy, hys, hxs, hys, hss);
   cv::Vec3f offset;
   if (!cv::solve(h, cv::Vec3f(-gx, -gy, -gs), offset, cv::DECOMP_LU)) return false;
+  if (offset == cv::Vec3f(0.0f, 0.0f, 0.0f)) return false;  // a singular fit, as the reference
   if (std::abs(offset[0]) > 1.0f || std::abs(offset[1]) > 1.0f || std::abs(offset[2]) > 1.0f) {
     return false;
   }
-  const float size_step = static_cast<float>(o.sizes[l + 1] - o.sizes[l]);
-  kp->pt = cv::Point2f((i + offset[0]) * o.step, (j + offset[1]) * o.step);
-  kp->size = o.sizes[l] + offset[2] * size_step;
+  const float size_step = static_cast<float>(o.sizes[l] - o.sizes[l - 1]);
+  kp->pt = cv::Point2f(SampleCentre(i, o.step) + offset[0] * o.step,
+                       SampleCentre(j, o.step) + offset[1] * o.step);
+  // Whole pixels, as OpenCV's SURF reports the filter side.
+  kp->size = static_cast<float>(std::lround(o.sizes[l] + offset[2] * size_step));
   kp->response = v;
   return true;
 }
@@ -147,9 +163,11 @@ void FindExtrema(const Octave& o, int octave_index, int image_w, int image_h, do
                  std::vector<cv::KeyPoint>* out) {
   const int layers = static_cast<int>(o.layers.size());
   for (int l = 1; l + 1 < layers; ++l) {
-    const int margin = (o.sizes[l + 1] / 2 + o.step - 1) / o.step + 1;
-    for (int j = margin; j + margin <= o.rows - 1; ++j) {
-      for (int i = margin; i + margin <= o.cols - 1; ++i) {
+    // Every 3x3x3 neighbour, the layer above's included, has its filter
+    // inside the image.
+    const int margin = (o.sizes[l + 1] / 2) / o.step + 1;
+    for (int j = margin; j < o.rows - margin; ++j) {
+      for (int i = margin; i < o.cols - margin; ++i) {
         const float v = o.At(l, i, j);
         if (v <= threshold || !IsLocalMaximum(o, l, i, j, v)) continue;
         cv::KeyPoint kp;
@@ -163,52 +181,59 @@ void FindExtrema(const Octave& o, int octave_index, int image_w, int image_h, do
   }
 }
 
-// Dominant orientation (radians) from Haar responses within radius 6s,
-// Gaussian-weighted (sigma 2s), summed in a sliding window of pi/3.
+// Dominant orientation (radians, image axes) as OpenCV's SURF assigns it:
+// Haar responses of side 4s (2 round(2s)) at the grid points i, j of step s
+// with i^2 + j^2 <= 36, Gaussian-weighted (sigma 2.5 s); the window of
+// +-30 degrees around each multiple of 5 degrees whose summed response is
+// longest gives the direction. Samples whose wavelet leaves the image are
+// skipped; 0 when none is left.
 float DominantOrientation(const IntegralImage& integral, const cv::KeyPoint& kp) {
-  struct Sample {
-    float angle, dx, dy;
-  };
+  constexpr int kRadius = 6;
+  constexpr float kSigma = 2.5f;
+  constexpr int kSearchStepDeg = 5;
+  constexpr int kHalfWindowDeg = 30;
   static const auto kOffsets = [] {
     std::vector<std::array<float, 3>> offsets;  // i, j, weight
-    for (int j = -6; j <= 6; ++j) {
-      for (int i = -6; i <= 6; ++i) {
-        if (i * i + j * j >= 36) continue;
-        offsets.push_back({float(i), float(j), std::exp(-(i * i + j * j) / (2.0f * 2.0f * 2.0f))});
+    for (int j = -kRadius; j <= kRadius; ++j) {
+      for (int i = -kRadius; i <= kRadius; ++i) {
+        if (i * i + j * j > kRadius * kRadius) continue;
+        offsets.push_back({float(i), float(j), std::exp(-(i * i + j * j) / (2.0f * kSigma * kSigma))});
       }
     }
     return offsets;
   }();
+  struct Sample {
+    int angle_deg;
+    float dx, dy;
+  };
   std::array<Sample, 128> samples;
   SLAM_CHECK(kOffsets.size() <= samples.size());
   const float s = 1.2f * kp.size / 9.0f;
   const int half = std::max(1, static_cast<int>(std::lround(2.0f * s)));
+  const int side = 2 * half;
   size_t n = 0;
   for (const auto& off : kOffsets) {
-    const int x = static_cast<int>(std::lround(kp.pt.x + off[0] * s));
-    const int y = static_cast<int>(std::lround(kp.pt.y + off[1] * s));
+    const int x0 = static_cast<int>(std::lround(kp.pt.x + off[0] * s - 0.5f * (side - 1)));
+    const int y0 = static_cast<int>(std::lround(kp.pt.y + off[1] * s - 0.5f * (side - 1)));
+    if (x0 < 0 || y0 < 0 || x0 + side > integral.width() || y0 + side > integral.height()) continue;
     float dx, dy;
-    integral.Haar(x, y, half, &dx, &dy);
-    if (dx == 0.0f && dy == 0.0f) continue;
+    integral.Haar(x0 + half, y0 + half, half, &dx, &dy);
     dx *= off[2];
     dy *= off[2];
-    samples[n++] = {std::atan2(dy, dx), dx, dy};
+    float angle = std::atan2(dy, dx) * 180.0f / kPi;
+    if (angle < 0.0f) angle += 360.0f;
+    samples[n++] = {static_cast<int>(std::lround(angle)), dx, dy};
   }
   if (n == 0) return 0.0f;
-  std::sort(samples.begin(), samples.begin() + n,
-            [](const Sample& a, const Sample& b) { return a.angle < b.angle; });
-  constexpr float kWindow = kPi / 3.0f;
-  float best = -1.0f, best_x = 0.0f, best_y = 0.0f, sum_x = 0.0f, sum_y = 0.0f;
-  size_t end = 0;  // window is [k, end) over the samples repeated once (+2 pi)
-  auto angle_at = [&](size_t idx) {
-    return idx < n ? samples[idx].angle : samples[idx - n].angle + 2.0f * kPi;
-  };
-  for (size_t k = 0; k < n; ++k) {
-    if (end < k) end = k;
-    while (end < k + n && angle_at(end) < samples[k].angle + kWindow) {
-      sum_x += samples[end % n].dx;
-      sum_y += samples[end % n].dy;
-      ++end;
+  float best = 0.0f, best_x = 0.0f, best_y = 0.0f;
+  for (int centre = 0; centre < 360; centre += kSearchStepDeg) {
+    float sum_x = 0.0f, sum_y = 0.0f;
+    for (size_t k = 0; k < n; ++k) {
+      const int d = std::abs(samples[k].angle_deg - centre);
+      if (d < kHalfWindowDeg || d > 360 - kHalfWindowDeg) {
+        sum_x += samples[k].dx;
+        sum_y += samples[k].dy;
+      }
     }
     const float norm = sum_x * sum_x + sum_y * sum_y;
     if (norm > best) {
@@ -216,15 +241,13 @@ float DominantOrientation(const IntegralImage& integral, const cv::KeyPoint& kp)
       best_x = sum_x;
       best_y = sum_y;
     }
-    if (end > k) {
-      sum_x -= samples[k].dx;
-      sum_y -= samples[k].dy;
-    }
   }
   return std::atan2(best_y, best_x);
 }
 
 }  // namespace
+
+int SurfFilterSide(int octave, int layer) { return (9 + 6 * layer) << octave; }
 
 std::vector<cv::KeyPoint> DetectSurfKeypoints(const IntegralImage& integral,
                                               const SurfOptions& options, int max_features) {
@@ -234,9 +257,9 @@ std::vector<cv::KeyPoint> DetectSurfKeypoints(const IntegralImage& integral,
   for (int octave = 0; octave < options.octaves; ++octave) {
     Octave o;
     o.step = 1 << octave;
-    o.cols = (integral.width() + o.step - 1) / o.step;
-    o.rows = (integral.height() + o.step - 1) / o.step;
-    for (int l = 0; l < layers; ++l) o.sizes.push_back(FilterSize(octave, l));
+    o.cols = integral.width() / o.step;
+    o.rows = integral.height() / o.step;
+    for (int l = 0; l < layers; ++l) o.sizes.push_back(SurfFilterSide(octave, l));
     if (o.sizes.back() + 2 * o.step >= std::min(integral.width(), integral.height())) break;
     o.layers.resize(layers);
     for (int l = 0; l < layers; ++l) {

@@ -65,6 +65,45 @@ TEST(SurfTest, DetectsABlobAtItsScale) {
   EXPECT_NEAR(f.keypoints[0].size, expected_size, 0.35 * expected_size);
 }
 
+TEST(SurfTest, OctavesDoubleTheFilterSizesAndSizesAreWholePixels) {
+  // OpenCV's scale space: octave o holds filters (9 + 6 l) 2^o, l = 0..3
+  // (Bay et al.'s paper has 15, 27, 39, 51 in octave 1), so a keypoint found
+  // in octave o, interpolated at most one layer from a middle layer, has a
+  // size in [9, 27] 2^o.
+  EXPECT_EQ(SurfFilterSide(0, 0), 9);
+  EXPECT_EQ(SurfFilterSide(0, 3), 27);
+  EXPECT_EQ(SurfFilterSide(1, 0), 18);
+  EXPECT_EQ(SurfFilterSide(1, 3), 54);
+  EXPECT_EQ(SurfFilterSide(3, 2), 168);
+  const FrameFeatures f = ExtractSurf(TexturedImage());
+  ASSERT_GT(f.size(), 300u);
+  int octave_one = 0;
+  for (const cv::KeyPoint& kp : f.keypoints) {
+    ASSERT_GE(kp.octave, 0);
+    ASSERT_LT(kp.octave, 4);
+    EXPECT_EQ(kp.size, std::round(kp.size));
+    EXPECT_GE(kp.size, 9 << kp.octave) << kp.octave;
+    EXPECT_LE(kp.size, 27 << kp.octave) << kp.octave;
+    octave_one += kp.octave == 1;
+  }
+  EXPECT_GT(octave_one, 20);
+}
+
+TEST(SurfTest, LocatesABlobInEveryOctaveToASubpixel) {
+  // Octaves sampled every 2 or 4 pixels place their samples at the centres of
+  // even-sided filters (i step + (step - 1) / 2); a symmetric blob is found
+  // where it is, whichever octave finds it.
+  for (const double radius : {3.0, 12.0, 24.0, 40.0}) {
+    cv::Mat image(300, 300, CV_8UC1, cv::Scalar(220));
+    cv::circle(image, cv::Point(150 * 16, 148 * 16), static_cast<int>(radius * 16),
+               cv::Scalar(30), cv::FILLED, cv::LINE_AA, 4);
+    const FrameFeatures f = ExtractSurf(image);
+    ASSERT_FALSE(f.empty());
+    EXPECT_NEAR(f.keypoints[0].pt.x, 150.0, 0.5) << radius << " octave " << f.keypoints[0].octave;
+    EXPECT_NEAR(f.keypoints[0].pt.y, 148.0, 0.5) << radius << " octave " << f.keypoints[0].octave;
+  }
+}
+
 TEST(SurfTest, IsDeterministic) {
   const cv::Mat image = TexturedImage();
   const FrameFeatures a = ExtractSurf(image), b = ExtractSurf(image);
