@@ -52,6 +52,10 @@ void CameraModelOptions::Check() const {
       << "camera.sharpen_sigma_px must be in (0, 5], got " << sharpen_sigma_px;
   SLAM_THROW_IF_NOT(ConfigError, sharpen_threshold_levels >= 0 && sharpen_threshold_levels <= 64)
       << "camera.sharpen_threshold_levels must be in [0, 64], got " << sharpen_threshold_levels;
+  SLAM_THROW_IF_NOT(ConfigError, noise_reduction >= 0 && noise_reduction <= 5)
+      << "camera.noise_reduction must be in [0, 5], got " << noise_reduction;
+  SLAM_THROW_IF_NOT(ConfigError, noise_reduction_sigma_px > 0 && noise_reduction_sigma_px <= 5)
+      << "camera.noise_reduction_sigma_px must be in (0, 5], got " << noise_reduction_sigma_px;
 }
 
 CameraModel::CameraModel(const CameraModelOptions& options, uint64_t seed)
@@ -68,6 +72,15 @@ double CameraModel::Tone(double linear) const {
   const double g = std::pow(std::clamp(linear, 0.0, 1.0), 1.0 / options_.gamma);
   // Smooth S-curve around mid grey: g + c * g (1 - g) (2 g - 1).
   return std::clamp(g + options_.tone_contrast * g * (1 - g) * (2 * g - 1) * 2.0, 0.0, 1.0);
+}
+
+double CameraModel::MidGreyNoiseLevels() const {
+  constexpr double kMidGrey = 0.18, kStep = 0.01;
+  const double shot = state_.gain / options_.photons_at_white;
+  const double read = options_.read_noise * state_.gain;
+  const double std_linear = std::sqrt(shot * kMidGrey + read * read);
+  const double slope = (Tone(kMidGrey + kStep) - Tone(kMidGrey - kStep)) / (2.0 * kStep);
+  return std_linear * slope * 255.0;
 }
 
 void CameraModel::SetExposure(double exposure) {
@@ -158,9 +171,18 @@ cv::Mat CameraModel::Capture(const cv::Mat& radiance, const cv::Vec2d& image_vel
       }
     }
   }
+  if (options_.noise_reduction > 0.0) ReduceNoise(&out);
   if (options_.sharpen_amount > 0.0) Sharpen(&out);
   Meter(radiance);
   return out;
+}
+
+void CameraModel::ReduceNoise(cv::Mat* bgr) {
+  const double range_sigma = options_.noise_reduction * 3.0 * MidGreyNoiseLevels();
+  const double space_sigma = options_.noise_reduction_sigma_px;
+  const int diameter = 2 * static_cast<int>(std::ceil(2.0 * space_sigma)) + 1;
+  cv::bilateralFilter(*bgr, denoised_, diameter, range_sigma, space_sigma, cv::BORDER_REFLECT);
+  std::swap(*bgr, denoised_);
 }
 
 void CameraModel::Sharpen(cv::Mat* bgr) {

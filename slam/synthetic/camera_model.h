@@ -3,9 +3,11 @@
 // auto-exposure with lag (metering the mean brightness of the previous
 // frame), grey-world auto white balance with lag and partial strength, optics
 // blur, shot and read noise that grow with analogue gain, a tone curve with
-// clipping and 8-bit quantisation, then the image processor's sharpening
-// (an unsharp mask of the luma with a noise threshold, as phone cameras
-// apply). Seeded: the same inputs give the same bytes.
+// clipping and 8-bit quantisation, then the image processor's noise
+// reduction (an edge-preserving filter whose strength follows the noise the
+// gain brings) and sharpening (an unsharp mask of the luma with a noise
+// threshold), as phone cameras apply them. Seeded: the same inputs give the
+// same bytes.
 #pragma once
 
 #include <cstdint>
@@ -42,6 +44,12 @@ struct CameraModelOptions {
   double sharpen_amount = 0.0;          // [0, 3]
   double sharpen_sigma_px = 1.0;        // (0, 5], pixels
   double sharpen_threshold_levels = 0.0;  // [0, 64], grey levels of 255
+  // Noise reduction of the 8-bit output, before sharpening: a bilateral filter (spatial sigma
+  // noise_reduction_sigma_px) whose range sigma is noise_reduction x the noise a mid-grey
+  // pixel carries at the frame's gain, summed over the three channels (the filter's colour
+  // distance is the sum of the channels' absolute differences). 0 = off.
+  double noise_reduction = 0.0;           // [0, 5]
+  double noise_reduction_sigma_px = 1.5;  // (0, 5], pixels
 
   PinholeCamera Intrinsics() const;
   void Check() const;
@@ -72,11 +80,16 @@ class CameraModel {
   const CameraState& state() const { return state_; }
   // The tone curve: linear [0, 1] -> output [0, 1].
   double Tone(double linear) const;
+  // Noise std of one channel of a mid-grey pixel (linear 0.18) in output
+  // grey levels of 255, at the current gain: shot and read noise through the
+  // tone curve's slope.
+  double MidGreyNoiseLevels() const;
 
  private:
   void Meter(const cv::Mat& radiance_bgr);
   void SetExposure(double exposure);
   void Sharpen(cv::Mat* bgr);
+  void ReduceNoise(cv::Mat* bgr);
 
   CameraModelOptions options_;
   CameraState state_;
@@ -86,6 +99,7 @@ class CameraModel {
   cv::Mat smeared_;                // scratch: motion-blurred radiance
   std::vector<float> noise_row_;   // scratch: one row of normal samples
   cv::Mat luma_, luma_blurred_;    // scratch: sharpening
+  cv::Mat denoised_;               // scratch: noise reduction
 };
 
 }  // namespace duskmap

@@ -120,6 +120,8 @@ struct JsonCodec<CameraModelOptions> {
     f("sharpen_amount", o.sharpen_amount);
     f("sharpen_sigma_px", o.sharpen_sigma_px);
     f("sharpen_threshold_levels", o.sharpen_threshold_levels);
+    f("noise_reduction", o.noise_reduction);
+    f("noise_reduction_sigma_px", o.noise_reduction_sigma_px);
   }
 };
 

@@ -158,6 +158,38 @@ TEST(CameraModel, SharpeningSteepensEdgesAndItsThresholdSparesFlatNoise) {
   EXPECT_LT(std_cored[1], 1.1 * std_plain[1]);
 }
 
+TEST(CameraModel, NoiseReductionFollowsTheGainAndKeepsEdges) {
+  // The model's mid-grey noise: one channel's std, in grey levels, grows with the gain.
+  const CameraModelOptions options = SmallOptions();
+  CameraModel day(options, 3), night(options, 3);
+  day.Settle(cv::Mat(120, 160, CV_32FC3, cv::Scalar(60, 60, 60)), 20);
+  const cv::Mat flat(120, 160, CV_32FC3, cv::Scalar(2, 2, 2));
+  night.Settle(flat, 20);
+  EXPECT_GT(night.MidGreyNoiseLevels(), 6.0 * day.MidGreyNoiseLevels());
+  // A dim scene at high gain, half of it 4x brighter: the filter removes most of the flat
+  // halves' noise and keeps the step between them.
+  cv::Mat step = flat.clone();
+  step.colRange(80, 160).setTo(cv::Scalar(8, 8, 8));
+  CameraModelOptions reduced = options;
+  reduced.noise_reduction = 1.5;
+  CameraModel plain_camera(options, 5), reduced_camera(reduced, 5);
+  plain_camera.Settle(step, 20);
+  reduced_camera.Settle(step, 20);
+  const cv::Mat plain = plain_camera.Capture(step), denoised = reduced_camera.Capture(step);
+  cv::Scalar plain_mean, plain_std, reduced_mean, reduced_std;
+  const cv::Rect dark_half(10, 10, 60, 100), bright_half(90, 10, 60, 100);
+  cv::meanStdDev(plain(dark_half), plain_mean, plain_std);
+  cv::meanStdDev(denoised(dark_half), reduced_mean, reduced_std);
+  EXPECT_LT(reduced_std[1], 0.5 * plain_std[1]);
+  EXPECT_NEAR(reduced_mean[1], plain_mean[1], 2.0);
+  const double plain_step = cv::mean(plain(bright_half))[1] - plain_mean[1];
+  const double reduced_step = cv::mean(denoised(bright_half))[1] - reduced_mean[1];
+  EXPECT_GT(plain_step, 40.0);
+  EXPECT_NEAR(reduced_step, plain_step, 0.05 * plain_step);
+  // Across the step itself the image stays sharp: the column just right of it keeps its level.
+  EXPECT_NEAR(cv::mean(denoised.col(81))[1], cv::mean(denoised(bright_half))[1], 0.1 * plain_step);
+}
+
 TEST(CameraModelOptions, CheckNamesTheField) {
   CameraModelOptions o;
   o.ae_speed = 0.0;
@@ -167,6 +199,12 @@ TEST(CameraModelOptions, CheckNamesTheField) {
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("camera.ae_speed"), std::string::npos);
   }
+  CameraModelOptions nr;
+  nr.noise_reduction = -1.0;
+  EXPECT_THROW(nr.Check(), ConfigError);
+  nr.noise_reduction = 1.0;
+  nr.noise_reduction_sigma_px = 0.0;
+  EXPECT_THROW(nr.Check(), ConfigError);
 }
 
 }  // namespace
