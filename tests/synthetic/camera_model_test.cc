@@ -28,6 +28,16 @@ double MeanBrightness(const cv::Mat& bgr) {
   return cv::mean(gray)[0] / 255.0;
 }
 
+// The image of `scene` from a camera with options `a` and one with `b`, each
+// settled on the scene first.
+std::pair<cv::Mat, cv::Mat> CaptureSettled(const CameraModelOptions& a, const CameraModelOptions& b,
+                                           const cv::Mat& scene, uint64_t seed) {
+  CameraModel first(a, seed), second(b, seed);
+  first.Settle(scene, 20);
+  second.Settle(scene, 20);
+  return {first.Capture(scene), second.Capture(scene)};
+}
+
 TEST(CameraModel, AutoExposureKeepsBrightnessNearTargetExceptAfterASuddenChange) {
   const CameraModelOptions options = SmallOptions();
   CameraModel camera(options, 1);
@@ -122,10 +132,7 @@ TEST(CameraModel, SharpeningSteepensEdgesAndItsThresholdSparesFlatNoise) {
   for (int c = 0; c < 160; ++c) stripes.col(c).setTo(cv::Scalar::all((c / 8) % 2 ? 60.0 : 20.0));
   CameraModelOptions sharp = clean;
   sharp.sharpen_amount = 1.0;
-  CameraModel plain_camera(clean, 1), sharp_camera(sharp, 1);
-  plain_camera.Settle(stripes, 20);
-  sharp_camera.Settle(stripes, 20);
-  const cv::Mat plain = plain_camera.Capture(stripes), sharpened = sharp_camera.Capture(stripes);
+  const auto [plain, sharpened] = CaptureSettled(clean, sharp, stripes, 1);
   cv::Mat plain_green, sharp_green;
   cv::extractChannel(plain, plain_green, 1);
   cv::extractChannel(sharpened, sharp_green, 1);
@@ -172,10 +179,7 @@ TEST(CameraModel, NoiseReductionFollowsTheGainAndKeepsEdges) {
   step.colRange(80, 160).setTo(cv::Scalar(8, 8, 8));
   CameraModelOptions reduced = options;
   reduced.noise_reduction = 1.5;
-  CameraModel plain_camera(options, 5), reduced_camera(reduced, 5);
-  plain_camera.Settle(step, 20);
-  reduced_camera.Settle(step, 20);
-  const cv::Mat plain = plain_camera.Capture(step), denoised = reduced_camera.Capture(step);
+  const auto [plain, denoised] = CaptureSettled(options, reduced, step, 5);
   cv::Scalar plain_mean, plain_std, reduced_mean, reduced_std;
   const cv::Rect dark_half(10, 10, 60, 100), bright_half(90, 10, 60, 100);
   cv::meanStdDev(plain(dark_half), plain_mean, plain_std);
