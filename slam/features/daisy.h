@@ -1,11 +1,13 @@
 // Own DAISY (Tola, Lepetit, Fua, "DAISY: An Efficient Dense Descriptor
-// Applied to Wide-Baseline Stereo", PAMI 2010): per orientation o the
-// gradient map G_o = max(0, d I / d o) is convolved with Gaussians of
-// growing sigma (sigma_i = R (i+1) / (2 Q), computed incrementally); the
-// descriptor stacks the orientation histograms sampled at the centre and at
-// `ring_points` points on each of the Q rings of radius R (i+1) / Q — with the
-// defaults 25 histograms x 8 bins = 200 floats. Runs on SURF keypoints as the
-// paper's SURF/DAISY runs (RTAB-Map type 14).
+// Applied to Wide-Baseline Stereo", PAMI 2010), as OpenCV's DAISY computes it
+// with its defaults (the reference's SURF/DAISY runs, RTAB-Map type 14): the
+// grey image in 0..1 blurred by 0.5; per orientation o the gradient map
+// G_o = max(0, d I / d o), blurred to 1.6 and then by Gaussians of growing
+// sigma (sigma_i = R (i+1) / (2 Q), incrementally); the descriptor stacks the
+// orientation histograms sampled at the centre and at `ring_points` points on
+// each of the Q rings of radius R (i+1) / Q, zero off the image — with the
+// defaults 25 histograms x 8 bins = 200 floats, raw (linear in the image's
+// contrast) unless options.normalize. Runs on SURF keypoints.
 #pragma once
 
 #include <vector>

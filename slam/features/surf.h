@@ -1,5 +1,6 @@
 // Own SURF (Bay, Ess, Tuytelaars, Van Gool, "Speeded-Up Robust Features",
-// CVIU 2008): Fast-Hessian detection with box filters on an integral image,
+// CVIU 2008), as OpenCV's SURF computes it (the reference's runs; details in
+// docs/features.md): Fast-Hessian detection with box filters on an integral image,
 // orientation from Haar responses in a sliding 60-degree window, and the
 // 64-D (or extended 128-D) descriptor of Haar sums over 4x4 subregions.
 // KeyPoint.size is the box-filter side in pixels (scale s = 1.2 * size / 9),
