@@ -32,20 +32,22 @@ struct BoxFilter {
 // Each lobe's weight is divided by its area: a response is a difference of
 // box means, which is the scale on which OpenCV's SURF applies its Hessian
 // threshold (the paper's 100).
-BoxFilter::Box MakeBox(int size, std::array<int, 4> edges9, float weight, int stride) {
+std::array<int, 4> ScaledEdges(int size, std::array<int, 4> edges9) {
   const float ratio = static_cast<float>(size) / 9.0f;
   std::array<int, 4> e{};
   for (int k = 0; k < 4; ++k) e[k] = static_cast<int>(std::lround(ratio * edges9[k]));
-  const int x0 = e[0], y0 = e[1], x1 = e[2], y1 = e[3];
+  return e;
+}
+
+BoxFilter::Box MakeBox(int size, std::array<int, 4> edges9, float weight, int stride) {
+  const auto [x0, y0, x1, y1] = ScaledEdges(size, edges9);
   return {{y0 * stride + x0, y0 * stride + x1, y1 * stride + x0, y1 * stride + x1},
           weight};
 }
 
 float BoxArea(int size, std::array<int, 4> edges9) {
-  const float ratio = static_cast<float>(size) / 9.0f;
-  const long w = std::lround(ratio * edges9[2]) - std::lround(ratio * edges9[0]);
-  const long h = std::lround(ratio * edges9[3]) - std::lround(ratio * edges9[1]);
-  return static_cast<float>(w * h);
+  const auto [x0, y0, x1, y1] = ScaledEdges(size, edges9);
+  return static_cast<float>((x1 - x0) * (y1 - y0));
 }
 
 BoxFilter MakeBoxFilter(int size, int stride) {
