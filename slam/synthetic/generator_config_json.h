@@ -92,6 +92,7 @@ struct JsonCodec<LightingOptions> {
     f("ambient_fraction", o.ambient_fraction);
     f("ambient_leak", o.ambient_leak);
     f("light_texel_m", o.light_texel_m);
+    f("sun_per_texel", o.sun_per_texel);
   }
 };
 

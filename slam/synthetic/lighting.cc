@@ -6,6 +6,7 @@
 
 #include "slam/core/check.h"
 #include "slam/synthetic/quad_bvh.h"
+#include "slam/synthetic/sun_texels.h"
 
 namespace duskmap {
 namespace {
@@ -131,7 +132,7 @@ bool SunThroughWindow(const Scene& scene, const RoomShadowing& room, const Quad&
 
 IrradianceParts DirectIrradiance(const Scene& scene, const SessionLighting& lighting,
                                  const RoomShadowing& room, const Eigen::Vector3d& point,
-                                 const Eigen::Vector3d& normal, int receiver_quad);
+                                 const Eigen::Vector3d& normal, int receiver_quad, bool include_sun = true);
 
 cv::Vec3f Scale(const cv::Vec3f& c, double s) { return c * static_cast<float>(s); }
 
@@ -333,11 +334,11 @@ namespace {
 
 IrradianceParts DirectIrradiance(const Scene& scene, const SessionLighting& lighting,
                                  const RoomShadowing& room, const Eigen::Vector3d& point,
-                                 const Eigen::Vector3d& normal, int receiver_quad) {
+                                 const Eigen::Vector3d& normal, int receiver_quad, bool include_sun) {
   IrradianceParts parts;
   const Eigen::Vector3d& to_sun = lighting.sun_direction_in_world;
   const double cos_sun = normal.dot(to_sun);
-  const bool sun_up = lighting.sun_normal_lux_bgr[1] > 0.0f && cos_sun > 0.0;
+  const bool sun_up = include_sun && lighting.sun_normal_lux_bgr[1] > 0.0f && cos_sun > 0.0;
   for (const int w : room.windows) {
     const Quad& q = scene.quads[static_cast<size_t>(w)];
     if (q.normal().dot(point - q.origin_in_world) <= 0.0) continue;  // behind the window
@@ -373,7 +374,7 @@ struct LightMap {
 };
 
 LightMap ComputeLightMap(const Scene& scene, const SessionLighting& lighting,
-                         const RoomShadowing& room, int quad_index, double texel_m) {
+                         const RoomShadowing& room, int quad_index, double texel_m, bool include_sun) {
   const Quad& q = scene.quads[quad_index];
   LightMap map;
   map.nodes_u = std::max(2, static_cast<int>(std::ceil(q.size_u_m / texel_m)) + 1);
@@ -385,7 +386,7 @@ LightMap ComputeLightMap(const Scene& scene, const SessionLighting& lighting,
   for (int j = 0; j < map.nodes_v; ++j) {
     for (int i = 0; i < map.nodes_u; ++i) {
       const Eigen::Vector3d p = q.PointAt(q.size_u_m * i / (map.nodes_u - 1), q.size_v_m * j / (map.nodes_v - 1)) + 1e-3 * n;
-      const IrradianceParts parts = DirectIrradiance(scene, lighting, room, p, n, quad_index);
+      const IrradianceParts parts = DirectIrradiance(scene, lighting, room, p, n, quad_index, include_sun);
       const size_t k = static_cast<size_t>(j) * map.nodes_u + i;
       map.lux[k] = parts.total();
       if (!map.vector_uvn.empty()) {
@@ -422,8 +423,9 @@ float ReliefFactor(const cv::Vec3f& vector_uvn, const cv::Vec2f& slope) {
 
 // Per-room ambient irradiance: a fraction of the area-weighted mean direct
 // irradiance of the room plus a leak of the apartment mean.
+// `sun_mean` (per quad, may be empty) adds the mean of a sun drawn per texel.
 std::vector<cv::Vec3f> AmbientPerRoom(const Scene& scene, const std::vector<LightMap>& maps,
-                                      const LightingOptions& options) {
+                                      const std::vector<cv::Vec3f>& sun_mean, const LightingOptions& options) {
   const size_t rooms = scene.room_names.size();
   std::vector<cv::Vec3d> sum(rooms, cv::Vec3d(0, 0, 0));
   std::vector<double> area(rooms, 0.0);
@@ -433,6 +435,7 @@ std::vector<cv::Vec3f> AmbientPerRoom(const Scene& scene, const std::vector<Ligh
     cv::Vec3d mean(0, 0, 0);
     for (const cv::Vec3f& e : maps[i].lux) mean += cv::Vec3d(e);
     mean /= static_cast<double>(maps[i].lux.size());
+    if (!sun_mean.empty()) mean += cv::Vec3d(sun_mean[i]);
     const double a = q.size_u_m * q.size_v_m;
     sum[q.room] += mean * a;
     area[q.room] += a;
@@ -466,9 +469,39 @@ SessionRadiance PrepareSessionRadiance(const Scene& scene, const SessionLighting
   for (size_t i = 0; i < scene.quads.size(); ++i) {
     const Quad& q = scene.quads[i];
     if (q.emission == Emission::kSky) continue;
-    maps[i] = ComputeLightMap(scene, lighting, shadowing(q.room), static_cast<int>(i), options.light_texel_m);
+    maps[i] = ComputeLightMap(scene, lighting, shadowing(q.room), static_cast<int>(i), options.light_texel_m,
+                              !options.sun_per_texel);
   }
-  const std::vector<cv::Vec3f> ambient = AmbientPerRoom(scene, maps, options);
+  // With sun_per_texel, the sun's visibility per texel of each quad it can
+  // reach, and its mean irradiance for the ambient term.
+  std::vector<cv::Mat> sun_visibility;
+  std::vector<cv::Vec3f> sun_mean;
+  if (options.sun_per_texel) {
+    sun_visibility.resize(scene.quads.size());
+    sun_mean.assign(scene.quads.size(), cv::Vec3f(0, 0, 0));
+    const Eigen::Vector3d& to_sun = lighting.sun_direction_in_world;
+    for (size_t i = 0; i < scene.quads.size(); ++i) {
+      const Quad& q = scene.quads[i];
+      const double cos_sun = q.normal().dot(to_sun);
+      if (q.emission == Emission::kSky || lighting.sun_normal_lux_bgr[1] <= 0.0f || cos_sun <= 0.0) continue;
+      const RoomShadowing& room = shadowing(q.room);
+      if (room.windows.empty()) continue;
+      const Eigen::Vector3d offset = 1e-3 * q.normal();
+      const int receiver = static_cast<int>(i);
+      const auto reaches = [&](const Eigen::Vector3d& point, const Eigen::Vector3d& direction) {
+        const Eigen::Vector3d p = point + offset;
+        for (const int w : room.windows) {
+          const Quad& window = scene.quads[static_cast<size_t>(w)];
+          if (window.normal().dot(p - window.origin_in_world) <= 0.0) continue;  // behind the window
+          if (SunThroughWindow(scene, room, window, p, direction, receiver)) return true;
+        }
+        return false;
+      };
+      sun_visibility[i] = SunVisibility(q, q.albedo.size(), to_sun, reaches);
+      sun_mean[i] = Scale(lighting.sun_normal_lux_bgr, cos_sun * cv::mean(sun_visibility[i])[0]);
+    }
+  }
+  const std::vector<cv::Vec3f> ambient = AmbientPerRoom(scene, maps, sun_mean, options);
   SessionRadiance session;
   const bool pane_mask = options.window_view_in_camera && lighting.window_view_obstructed;
   if (pane_mask) {
@@ -492,9 +525,22 @@ SessionRadiance PrepareSessionRadiance(const Scene& scene, const SessionLighting
     cv::Mat out(q.albedo.size(), CV_32FC3);
     const bool glowing = q.emission == Emission::kLamp && lighting.lamp_on[q.lamp];
     const bool relief = !maps[i].vector_uvn.empty();
+    // The sun per texel: its irradiance on the quad and its irradiance
+    // vector in the quad's frame, times each texel's visibility.
+    const bool texel_sun = !sun_visibility.empty() && !sun_visibility[i].empty();
+    cv::Vec3f sun_lux(0, 0, 0), sun_vector_uvn(0, 0, 0);
+    if (texel_sun) {
+      const Eigen::Vector3d& d = lighting.sun_direction_in_world;
+      sun_lux = Scale(lighting.sun_normal_lux_bgr, q.normal().dot(d));
+      const double luminance = Luminance(lighting.sun_normal_lux_bgr);
+      sun_vector_uvn = cv::Vec3f(static_cast<float>(luminance * d.dot(q.u_axis)),
+                                 static_cast<float>(luminance * d.dot(q.v_axis)),
+                                 static_cast<float>(luminance * d.dot(q.normal())));
+    }
     for (int r = 0; r < out.rows; ++r) {
       const cv::Vec3f* a = q.albedo.ptr<cv::Vec3f>(r);
       const cv::Vec2f* slope = relief ? q.relief_slope.ptr<cv::Vec2f>(r) : nullptr;
+      const float* sun = texel_sun ? sun_visibility[i].ptr<float>(r) : nullptr;
       cv::Vec3f* o = out.ptr<cv::Vec3f>(r);
       const double fv = (r + 0.5) / out.rows;
       for (int c = 0; c < out.cols; ++c) {
@@ -507,7 +553,12 @@ SessionRadiance PrepareSessionRadiance(const Scene& scene, const SessionLighting
         } else {
           const double fu = (c + 0.5) / out.cols;
           cv::Vec3f direct = SampleNodes(maps[i], maps[i].lux, fu, fv);
-          if (relief) direct *= ReliefFactor(SampleNodes(maps[i], maps[i].vector_uvn, fu, fv), slope[c]);
+          if (sun != nullptr) direct += sun_lux * sun[c];
+          if (relief) {
+            cv::Vec3f vector_uvn = SampleNodes(maps[i], maps[i].vector_uvn, fu, fv);
+            if (sun != nullptr) vector_uvn += sun_vector_uvn * sun[c];
+            direct *= ReliefFactor(vector_uvn, slope[c]);
+          }
           o[c] = a[c].mul(direct + ambient[q.room]) * inv_pi;
         }
       }

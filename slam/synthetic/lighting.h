@@ -47,6 +47,12 @@ struct LightingOptions {
   double ambient_fraction = 0.35;          // interreflection: fraction of the room's mean irradiance
   double ambient_leak = 0.06;              // fraction of the apartment mean reaching every room
   double light_texel_m = 0.05;             // light-map spacing
+  // The sun per texel of each quad's texture (sun_texels.h: antialiased
+  // edges, the penumbra of the sun's disc) instead of through the light
+  // map's nodes, which draw a sun patch's slanted edges as stairs of
+  // light_texel_m. Meshes keep the sun per vertex either way. Off: the
+  // datasets generated before 2026-12-06, byte for byte.
+  bool sun_per_texel = false;
 
   void Check() const;
 };

@@ -296,6 +296,72 @@ TEST(WindowView, GroundFacadesAndSkyMatchABruteForceIntegration) {
   EXPECT_FLOAT_EQ(ratio({1.2, 0.3, 0.0}, {0, 0, 1}), 1.0f);
 }
 
+// The sun's visibility a floor texel's radiance shows (sun only, no sky, no
+// ambient), by texel.
+cv::Mat SunFractionOnFloor(const cv::Mat& radiance, double cos_sun, double sun_lux) {
+  std::vector<cv::Mat> channels;
+  cv::split(radiance, channels);
+  return channels[1] / (0.5 * sun_lux * cos_sun / M_PI);
+}
+
+TEST(PrepareSessionRadiance, TheSunPerTexelDrawsThePatchTheWindowCasts) {
+  // OneWindowScene's window (x = 0, y -1..1, z 0.9..2.1) and a floor at 1 cm
+  // texels; the sun low in the west-south-west, so the patch's sides slant.
+  Scene scene = OneWindowScene();
+  Quad floor;
+  floor.origin_in_world = Eigen::Vector3d(0.05, -2.2, 0.0);
+  floor.u_axis = Eigen::Vector3d::UnitX();
+  floor.v_axis = Eigen::Vector3d::UnitY();
+  floor.size_u_m = 3.0;
+  floor.size_v_m = 3.0;
+  floor.albedo = cv::Mat(300, 300, CV_32FC3, cv::Scalar(0.5, 0.5, 0.5));
+  scene.quads.push_back(floor);
+  LightingOptions options;
+  options.ambient_fraction = 0.0;
+  options.ambient_leak = 0.0;
+  SessionLighting l = ComputeSessionLighting(options, scene, 12.0);
+  const Eigen::Vector3d to_sun = Eigen::Vector3d(-0.8, 0.3, 0.6).normalized();
+  l.sun_direction_in_world = to_sun;
+  l.sun_normal_lux_bgr = cv::Vec3f(1000, 1000, 1000);
+  l.sky_nits_bgr = cv::Vec3f(0, 0, 0);
+  const double cos_sun = to_sun.z();
+
+  options.sun_per_texel = true;
+  const cv::Mat per_texel = SunFractionOnFloor(PrepareSessionRadiance(scene, l, options).quads[1], cos_sun, 1000);
+  options.sun_per_texel = false;
+  const cv::Mat light_map = SunFractionOnFloor(PrepareSessionRadiance(scene, l, options).quads[1], cos_sun, 1000);
+
+  // Where each texel's centre sees the sun through the window, and how far
+  // (on the window) from the window's edge.
+  double area_m2 = 0.0, texel_error = 0.0, map_error = 0.0;
+  int edge_texels = 0;
+  for (int r = 0; r < 300; ++r) {
+    for (int c = 0; c < 300; ++c) {
+      const Eigen::Vector3d p = floor.PointAt((c + 0.5) * 0.01, (r + 0.5) * 0.01);
+      const double t = -p.x() / to_sun.x();
+      const double y = p.y() + t * to_sun.y(), z = t * to_sun.z();
+      const double inside_m = std::min({y + 1.0, 1.0 - y, z - 0.9, 2.1 - z});
+      const float expected = inside_m >= 0.0 ? 1.0f : 0.0f;
+      const float value = per_texel.at<float>(r, c);
+      area_m2 += value * 1e-4;
+      if (std::abs(inside_m) > 0.03) {
+        ASSERT_NEAR(value, expected, 1e-4) << r << " " << c;
+        EXPECT_NEAR(light_map.at<float>(r, c), expected, std::abs(inside_m) > 0.15 ? 1e-4 : 1.0);
+      } else {
+        texel_error += std::abs(value - expected);
+        map_error += std::abs(light_map.at<float>(r, c) - expected);
+        ++edge_texels;
+      }
+    }
+  }
+  // The window's 2.4 m2 projected along the sun onto the floor.
+  EXPECT_NEAR(area_m2, 2.4 * (-to_sun.x()) / to_sun.z(), 0.01 * 3.2);
+  ASSERT_GT(edge_texels, 500);
+  // Near the edges the texels follow the window's straight edges (off only
+  // by the penumbra); the light map's 5 cm nodes draw stairs.
+  EXPECT_LT(texel_error, 0.5 * map_error) << texel_error / edge_texels << " against " << map_error / edge_texels;
+}
+
 TEST(WindowView, GroundAndFacadesAreLitBySkyAndSun) {
   const Scene scene = OneWindowScene();
   LightingOptions options;
