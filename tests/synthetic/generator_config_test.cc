@@ -38,6 +38,12 @@ TEST(ReadGeneratorConfig, DefaultConfigFileIsValidAndMatchesThePaper) {
   EXPECT_EQ(config.scene.living_lamp_on_from, "17:54");
   EXPECT_EQ(config.scene.bedroom_ceiling_cd, 0.0);  // the optional ceiling lights are off
   EXPECT_EQ(config.scene.living_ceiling_cd, 0.0);
+  // Calibration run 22 (docs/synthetic_dataset.md): the sun per texel and the
+  // image processor's noise reduction, then local contrast.
+  EXPECT_TRUE(config.lighting.sun_per_texel);
+  EXPECT_EQ(config.camera.noise_reduction, 1.5);
+  EXPECT_EQ(config.camera.sharpen_sigma_px, 5.0);
+  EXPECT_EQ(config.camera.sharpen_amount, 0.5);
 }
 
 TEST(ReadGeneratorConfig, ReadsTheOptionalCeilingLights) {
