@@ -276,10 +276,13 @@ RunFn SetupRun(CLI::App& command) {
                 << seconds << " s";
     }
     std::cout << "\n";
-    WriteRunTiming(summary, output / "timing.json");
+    // The failures first: when the disk is full, writing timing.json throws
+    // too, and the jobs' own reasons must not be lost behind it.
     for (const JobFailure& failure : summary.failures) {
       std::cout << "failed: " << failure.job_id << ": " << failure.message << "\n";
     }
+    std::cout.flush();
+    WriteRunTiming(summary, output / "timing.json");
     if (args->report && shard_count == 1) {
       ReportRequest request;
       request.config_path = args->config;

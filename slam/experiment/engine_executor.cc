@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "slam/core/check.h"
+#include "slam/core/system_error.h"
 #include "slam/core/timer.h"
 #include "slam/engine/record_io.h"
 #include "slam/engine/session_runs.h"
@@ -23,7 +24,7 @@ void WriteJsonRows(const fs::path& path, const std::vector<nlohmann::json>& rows
   std::ofstream out(path);
   SLAM_THROW_IF_NOT(InputError, out.good()) << path.string() << ": cannot write";
   WriteJsonLines(out, rows);
-  SLAM_THROW_IF_NOT(InputError, out.good()) << path.string() << ": write failed";
+  SLAM_THROW_IF_NOT(InputError, out.good()) << path.string() << ": write failed: " << LastSystemError();
 }
 
 // ATE of the nodes of the session group holding the map's first session (the
@@ -65,7 +66,7 @@ double WriteGraphAndAte(const Map& map, const fs::path& graph_file) {
     }
     out << "\n";
   }
-  SLAM_THROW_IF_NOT(InputError, out.good()) << graph_file.string() << ": write failed";
+  SLAM_THROW_IF_NOT(InputError, out.good()) << graph_file.string() << ": write failed: " << LastSystemError();
   return ate ? 1000.0 * ate->rmse_m : -1.0;
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "slam/core/check.h"
+#include "slam/core/system_error.h"
 #include "slam/map/map_codec.h"
 
 namespace duskmap {
@@ -129,7 +130,7 @@ void FeatureCacheWriter::Close() {
   out_.seekp(count_position_);
   WritePod(out_, num_frames_);
   out_.flush();
-  SLAM_THROW_IF_NOT(InputError, out_.good()) << path_.string() << ": write failed";
+  SLAM_THROW_IF_NOT(InputError, out_.good()) << path_.string() << ": write failed: " << LastSystemError();
   out_.close();
   closed_ = true;
 }

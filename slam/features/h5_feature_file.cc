@@ -3,6 +3,7 @@
 #include <hdf5.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <filesystem>
 #include <mutex>
@@ -11,6 +12,7 @@
 #include <type_traits>
 
 #include "slam/core/check.h"
+#include "slam/core/system_error.h"
 
 namespace duskmap {
 namespace {
@@ -18,8 +20,15 @@ namespace {
 static_assert(std::is_same_v<hid_t, int64_t>, "H5FeatureFile stores hid_t as int64_t");
 
 std::mutex& H5Mutex() {
-  static std::mutex mutex;
-  return mutex;
+  // Before any other HDF5 call: no library shutdown at process exit. A file
+  // whose close failed (a full disk) stays in HDF5's tables, and the shutdown
+  // closing it again crashed the process after its error message; the
+  // operating system releases what is left instead.
+  static std::mutex* mutex = [] {
+    H5dont_atexit();
+    return new std::mutex;
+  }();
+  return *mutex;
 }
 
 // Every entry point holds the lock and silences HDF5's printing of its error
@@ -146,6 +155,7 @@ class DatasetReader {
 
 void WriteDataset(hid_t group, const char* name, hid_t file_type, hid_t memory_type,
                   std::vector<hsize_t> dims, const void* data, const std::string& where) {
+  errno = 0;  // a failure's reason is the system's only if a system call set it here
   const Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose);
   const Handle dataset(space.ok() ? H5Dcreate2(group, name, file_type, space.get(), H5P_DEFAULT,
                                                H5P_DEFAULT, H5P_DEFAULT)
@@ -156,7 +166,7 @@ void WriteDataset(hid_t group, const char* name, hid_t file_type, hid_t memory_t
   SLAM_THROW_IF_NOT(InputError, dataset.ok() &&
                                     (empty || H5Dwrite(dataset.get(), memory_type, H5S_ALL, H5S_ALL,
                                                        H5P_DEFAULT, data) >= 0))
-      << where << "/" << name << ": cannot be written";
+      << where << "/" << name << ": cannot be written: " << LastSystemError();
 }
 
 }  // namespace
@@ -202,10 +212,12 @@ H5FeatureFile::~H5FeatureFile() {
 void H5FeatureFile::Close() {
   if (file_ < 0) return;
   const H5Guard guard;
+  errno = 0;
   const bool flushed = H5Fflush(file_, H5F_SCOPE_GLOBAL) >= 0;
   const bool closed = H5Fclose(file_) >= 0;
   file_ = -1;
-  SLAM_THROW_IF_NOT(InputError, flushed && closed) << path_ << ": cannot be written to the end";
+  SLAM_THROW_IF_NOT(InputError, flushed && closed)
+      << path_ << ": cannot write the HDF5 file to the end: " << LastSystemError();
 }
 
 bool H5FeatureFile::HasImage(const std::string& image) const {

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "slam/core/check.h"
+#include "slam/core/system_error.h"
 #include "slam/core/json_fields.h"
 #include "slam/io/calibration_json.h"
 
@@ -37,7 +38,7 @@ void WriteCalibration(const std::string& path, const TumCalibration& c) {
   std::ofstream out(path);
   SLAM_THROW_IF_NOT(InputError, out.good()) << path << ": cannot write calibration";
   out << json.dump(2) << "\n";
-  SLAM_THROW_IF_NOT(InputError, out.good()) << path << ": write failed";
+  SLAM_THROW_IF_NOT(InputError, out.good()) << path << ": write failed: " << LastSystemError();
 }
 
 TumCalibration DefaultTumCalibration(const std::string& folder_name) {

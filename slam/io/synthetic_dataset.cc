@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "slam/core/check.h"
+#include "slam/core/system_error.h"
 #include "slam/core/json_codec.h"
 #include "slam/core/json_fields.h"
 #include "slam/io/path_status.h"
@@ -67,7 +68,7 @@ void WriteManifest(const std::string& dataset_path, const DatasetManifest& manif
   std::ofstream out(path);
   SLAM_THROW_IF_NOT(InputError, out.good()) << path << ": cannot write manifest";
   out << json.dump(2) << "\n";
-  SLAM_THROW_IF_NOT(InputError, out.good()) << path << ": write failed";
+  SLAM_THROW_IF_NOT(InputError, out.good()) << path << ": write failed: " << LastSystemError();
 }
 
 DatasetManifest ReadManifest(const std::string& dataset_path) {

@@ -3,10 +3,10 @@
 #include <cstdio>
 #include <fstream>
 
-#include <opencv2/imgcodecs.hpp>
-
 #include "slam/core/check.h"
+#include "slam/core/system_error.h"
 #include "slam/io/folder_commit.h"
+#include "slam/io/image_file.h"
 
 namespace duskmap {
 
@@ -53,12 +53,9 @@ void TumSessionWriter::Write(const RgbdFrame& frame) {
   // an explicit IMWRITE_PNG_COMPRESSION (adaptive filters, default strategy)
   // and give slightly smaller files on camera-noisy images.
   const std::vector<int> params;
-  SLAM_THROW_IF_NOT(InputError, cv::imwrite(folder_ + "/" + rgb_name, frame.bgr, params))
-      << folder_ << "/" << rgb_name << ": cannot write image";
-  SLAM_THROW_IF_NOT(InputError,
-                    cv::imwrite(folder_ + "/" + depth_name,
-                                DepthToRaw(frame.depth_m, calibration_.depth_scale), params))
-      << folder_ << "/" << depth_name << ": cannot write image";
+  WriteImageFile(folder_ + "/" + rgb_name, frame.bgr, params);
+  WriteImageFile(folder_ + "/" + depth_name, DepthToRaw(frame.depth_m, calibration_.depth_scale),
+                 params);
   rgb_lines_.push_back(stamp + " " + rgb_name);
   depth_lines_.push_back(stamp + " " + depth_name);
   if (frame.world_from_camera) ground_truth_.push_back({frame.timestamp_s, *frame.world_from_camera});
@@ -73,7 +70,7 @@ void WriteIndex(const std::string& path, const std::string& kind,
   out << "# " << kind << " images\n# timestamp filename\n";
   for (const std::string& line : lines) out << line << "\n";
   out.flush();
-  SLAM_THROW_IF_NOT(InputError, out.good()) << path << ": write failed";
+  SLAM_THROW_IF_NOT(InputError, out.good()) << path << ": write failed: " << LastSystemError();
 }
 }  // namespace
 

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "slam/core/check.h"
+#include "slam/core/system_error.h"
 #include "slam/core/random.h"
 #include "slam/core/timer.h"
 #include "slam/io/folder_commit.h"
@@ -49,7 +50,7 @@ void WriteSessionJson(const std::string& path, const SessionSpec& spec, const Sc
   std::ofstream out(path);
   SLAM_THROW_IF_NOT(InputError, out.good()) << path << ": cannot write";
   out << json.dump(2) << "\n";
-  SLAM_THROW_IF_NOT(InputError, out.good()) << path << ": write failed";
+  SLAM_THROW_IF_NOT(InputError, out.good()) << path << ": write failed: " << LastSystemError();
 }
 
 GeneratedSessionSummary GenerateSession(const GeneratorConfig& config, const Scene& scene, size_t index,

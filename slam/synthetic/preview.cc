@@ -7,6 +7,7 @@
 
 #include "slam/core/check.h"
 #include "slam/io/folder_commit.h"
+#include "slam/io/image_file.h"
 #include "slam/synthetic/session_simulator.h"
 
 namespace duskmap {
@@ -36,8 +37,7 @@ cv::Mat Grid(const std::vector<cv::Mat>& tiles, int columns) {
 }
 
 void Write(const std::string& path, const cv::Mat& image) {
-  SLAM_THROW_IF_NOT(InputError, cv::imwrite(path, image, {cv::IMWRITE_PNG_COMPRESSION, 9}))
-      << path << ": cannot write preview";
+  WriteImageFile(path, image, {cv::IMWRITE_PNG_COMPRESSION, 9});
 }
 
 cv::Mat TopView(const Scene& scene, const std::vector<SessionPreview>& previews) {

@@ -1,8 +1,10 @@
 #include "slam/features/h5_feature_file.h"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -88,6 +90,32 @@ TEST(H5FeatureFile, RoundTripOfFloatAndBinaryFeaturesInNestedGroups) {
   const H5ImageFeatures none = file.Read("A/rgb/60000.000000.png", DescriptorKind::kFloat);
   EXPECT_TRUE(none.keypoints.empty());
   EXPECT_TRUE(none.descriptors.empty());
+}
+
+// A disk that fills up: a file-size limit (RLIMIT_FSIZE, SIGXFSZ ignored)
+// refuses writes past 64 KiB with EFBIG, as a full disk refuses them with
+// ENOSPC. The error says so; and the process exits cleanly afterwards (HDF5's
+// shutdown at exit used to close the failed file again and crash).
+TEST(H5FeatureFile, AFailedWriteNamesTheFileAndTheReasonAndTheProcessSurvives) {
+  const std::string path = TempPath("size_limited.h5");
+  rlimit saved{};
+  ASSERT_EQ(getrlimit(RLIMIT_FSIZE, &saved), 0);
+  const auto old_handler = std::signal(SIGXFSZ, SIG_IGN);
+  rlimit limited = saved;
+  limited.rlim_cur = 64 * 1024;
+  ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &limited), 0);
+  // Past the limit the descriptors' write fails (or, for data HDF5 holds back,
+  // the close); either names the file and the system's reason.
+  const std::string error = ErrorOf([&] {
+    H5FeatureFile file(path, H5FeatureFile::Mode::kCreate);
+    file.Write("1/rgb/60000.000000.png", SomeKeypoints(500), SomeDescriptors(500, 128, CV_32F),
+               DescriptorKind::kFloat);
+    file.Close();
+  });
+  setrlimit(RLIMIT_FSIZE, &saved);
+  std::signal(SIGXFSZ, old_handler);
+  EXPECT_EQ(error.rfind(path + ":", 0), 0u) << error;
+  EXPECT_NE(error.find(": File too large"), std::string::npos) << error;
 }
 
 TEST(H5FeatureFile, PixelCornerKeypointsAreShiftedToOpenCVsConvention) {
