@@ -24,11 +24,13 @@ GapMetrics ComputeGapMetrics(const std::vector<Eigen::Vector3d>& positions,
   for (size_t i = 0; i < positions.size(); ++i) {
     SLAM_THROW_IF_NOT(InputError, positions[i].allFinite())
         << "ComputeGapMetrics: position " << i << " is not finite";
+    double step_m = 0.0;
     if (i > 0) {
-      const double step_m = (positions[i] - positions[i - 1]).norm();
+      step_m = (positions[i] - positions[i - 1]).norm();
       since_last_m += step_m;
       metrics.total_distance_m += step_m;
     }
+    if (step_m <= options.within_m) ++metrics.num_within_bound;
     metrics.max_gap_m = std::max(metrics.max_gap_m, since_last_m);
     if (relocalized[i]) {
       ++metrics.num_relocalized;

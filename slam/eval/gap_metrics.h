@@ -4,6 +4,11 @@
 // previous re-localization (at 1 Hz and 0.55 m/s: "the frame before was
 // re-localized too"). Distances are integrated along the given positions
 // (odometry or ground truth: any frame, only differences are used).
+//
+// The share is bounded by the path: a frame that comes more than within_m
+// after the one before cannot count, however well both re-localize. At 1 Hz a
+// walker a little faster than 0.55 m/s loses every walking frame, so the
+// bound (num_within_bound) says how much of the path the rule can count at all.
 #pragma once
 
 #include <vector>
@@ -29,6 +34,9 @@ struct GapMetrics {
   // session start, for the first) was <= within_m.
   int num_within = 0;
   double within_pct = 0.0;  // 100 * num_within / number of frames
+  // num_within had every frame re-localized: the first frame and those no
+  // more than within_m after the frame before (the path's bound on num_within).
+  int num_within_bound = 0;
 };
 
 // positions[i] is frame i's position; relocalized[i] whether it re-localized.

@@ -158,6 +158,29 @@ nlohmann::json OptionalJson(const std::optional<double>& value) {
   return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
 }
 
+std::vector<ConsecutiveBound> ConsecutiveBounds(const ReportTable* within,
+                                               const ReportTable* bound) {
+  std::vector<ConsecutiveBound> bounds;
+  if (within == nullptr || bound == nullptr) return bounds;
+  for (const std::string& row : within->rows()) {
+    if (!bound->HasRow(row)) continue;
+    ConsecutiveBound b;
+    b.row = row;
+    for (const std::string& feature : within->columns()) {
+      if (!bound->HasColumn(feature)) continue;
+      const TableCell& w = within->At(row, feature);
+      const TableCell& most = bound->At(row, feature);
+      if (!w.measured || !most.measured) continue;
+      b.features.push_back(feature);
+      b.measured_pct.push_back(*w.measured);
+      b.bound_pct.push_back(*most.measured);
+      b.paper_pct.push_back(w.paper);
+    }
+    if (!b.features.empty()) bounds.push_back(std::move(b));
+  }
+  return bounds;
+}
+
 }  // namespace
 
 const char* AgreementRoleName(AgreementRole role) {
@@ -269,6 +292,8 @@ AgreementReport ComputeAgreement(const std::vector<ReportTable>& tables,
   agreement.night_minus_day = NightDay(relocalization, agreement.ranking);
   agreement.single_map_rows = SingleMapRows(relocalization, agreement.ranking);
   agreement.features_per_frame = FeatureRatios(FindTable(tables, kTableTiming));
+  agreement.consecutive_bounds =
+      ConsecutiveBounds(within, FindTable(tables, kTableConsecutiveWithin55cmBoundPct));
   agreement.findings = CheckPaperFindings(tables, single_maps, paper.Findings());
   return agreement;
 }
@@ -332,6 +357,21 @@ std::string AgreementToMarkdown(const AgreementReport& agreement) {
     }
     out << "\n\n";
   }
+  if (!agreement.consecutive_bounds.empty()) {
+    out << "**Consecutive sessions, within 55 cm against the paths' bound** (the share had every "
+           "frame re-localized: a frame more than 55 cm after the one before never counts; "
+           "measured / bound (paper), %):";
+    for (const ConsecutiveBound& b : agreement.consecutive_bounds) {
+      out << " " << b.row << ":";
+      for (size_t i = 0; i < b.features.size(); ++i) {
+        out << " " << b.features[i] << " " << FormatFixed(b.measured_pct[i], 0) << "/"
+            << FormatFixed(b.bound_pct[i], 0);
+        if (b.paper_pct[i]) out << " (" << FormatFixed(*b.paper_pct[i], 0) << ")";
+      }
+      out << ";";
+    }
+    out << "\n\n";
+  }
   out << "**The paper's findings**: " << agreement.FindingsReproduced() << " of "
       << agreement.FindingsDecided() << " decided reproduced\n\n"
       << "| finding | rule | measured | verdict | the rule on the paper's numbers |\n"
@@ -382,6 +422,16 @@ nlohmann::json AgreementToJson(const AgreementReport& agreement) {
   for (const FeatureRatio& f : agreement.features_per_frame) {
     json["features_per_frame"].push_back(
         {{"feature", f.feature}, {"measured", f.measured}, {"paper", f.paper}, {"ratio", f.ratio}});
+  }
+  json["consecutive_bounds"] = nlohmann::json::array();
+  for (const ConsecutiveBound& b : agreement.consecutive_bounds) {
+    nlohmann::json paper = nlohmann::json::array();
+    for (const auto& v : b.paper_pct) paper.push_back(OptionalJson(v));
+    json["consecutive_bounds"].push_back({{"row", b.row},
+                                          {"features", b.features},
+                                          {"measured_pct", b.measured_pct},
+                                          {"bound_pct", b.bound_pct},
+                                          {"paper_pct", paper}});
   }
   json["findings"] = nlohmann::json::array();
   for (const FindingCheck& f : agreement.findings) {

@@ -91,12 +91,26 @@ struct RowSignedDeviation {
   int features = 0;                // the ranked features with both values
 };
 
+// One consecutive-session gap class: the frames re-localized within 55 cm
+// against the paths' bound (the share had every frame re-localized: a frame
+// more than 55 cm after the one before never counts) and the paper's value.
+// A paper value above the bound is out of reach on these paths, whatever the
+// features do.
+struct ConsecutiveBound {
+  std::string row;                    // "30 min"
+  std::vector<std::string> features;  // those with a measured share and bound
+  std::vector<double> measured_pct;
+  std::vector<double> bound_pct;
+  std::vector<std::optional<double>> paper_pct;
+};
+
 struct AgreementReport {
   std::vector<TableDeviation> deviations;
   RankAgreement ranking;
   NightMinusDay night_minus_day;
   std::vector<RowSignedDeviation> single_map_rows;  // in the table's row order
   std::vector<FeatureRatio> features_per_frame;
+  std::vector<ConsecutiveBound> consecutive_bounds;  // empty without the bound table
   std::vector<FindingCheck> findings;
 
   int FindingsReproduced() const;

@@ -98,6 +98,7 @@ LocalizationJobSummary SummarizeLocalization(const Map& map, const LocalizationR
   summary.mean_jump_mm = run.summary.mean_jump_mm;
   summary.max_gap_m = run.summary.gaps.max_gap_m;
   summary.num_within_55cm = run.summary.gaps.num_within;
+  summary.num_within_55cm_bound = run.summary.gaps.num_within_bound;
   double inliers_pct_sum = 0.0;
   double features_sum = 0.0;
   for (const LocalizationRecord& record : run.records) {

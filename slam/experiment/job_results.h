@@ -43,6 +43,9 @@ struct LocalizationJobSummary {
   double mean_features = 0.0;     // features per frame
   double max_gap_m = 0.0;         // largest distance travelled without re-localization
   int num_within_55cm = 0;        // re-localized within 0.55 m of the previous one
+  // num_within_55cm had every frame re-localized (GapMetrics::num_within_bound):
+  // the path's bound; -1 in summaries written before it was recorded.
+  int num_within_55cm_bound = -1;
   // Session name of the map node each re-localized frame matched, per frame
   // ("" when not re-localized), for the over-time figure.
   std::vector<std::string> matched_session_per_frame;

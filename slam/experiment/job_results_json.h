@@ -60,6 +60,7 @@ struct JsonCodec<LocalizationJobSummary> {
     f("index_restore_s", o.index_restore_s);
     f("index_restored", o.index_restored);
     f("index_rebuild_reason", o.index_rebuild_reason);
+    f("num_within_55cm_bound", o.num_within_55cm_bound);
   }
 };
 

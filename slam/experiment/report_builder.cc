@@ -341,24 +341,46 @@ std::vector<ReportTable> ConsecutiveTables(const ExperimentOptions& options,
                      "Consecutive sessions: frames re-localized within 55 cm of the previous "
                      "re-localization (%)",
                      rows, options.features);
-  std::map<std::pair<std::string, std::string>, std::pair<double, std::pair<int, int>>> acc;
+  ReportTable bound(kTableConsecutiveWithin55cmBoundPct,
+                    "Consecutive sessions: the most frames the 55-cm rule can count on these "
+                    "paths, every frame re-localized (%): a frame more than 55 cm after the one "
+                    "before never counts",
+                    rows, options.features);
+  struct ClassSums {
+    double max_gap_m = 0.0;
+    int within = 0;
+    int bound = 0;
+    bool bound_known = true;  // every summary of the class recorded its bound
+    int frames = 0;
+  };
+  std::map<std::pair<std::string, std::string>, ClassSums> acc;
   std::ostringstream out;
-  out << "feature,map_session,localization_session,gap_min,gap_class_min,max_gap_m,within_55cm_pct\n";
+  out << "feature,map_session,localization_session,gap_min,gap_class_min,max_gap_m,"
+         "within_55cm_pct,relocalized_pct,within_55cm_bound_pct\n";
   for (const ConsecutiveCell& cell : plan.consecutive) {
     const auto it = results.localization.find(cell.job_id);
     if (it == results.localization.end() || it->second.num_frames == 0) continue;
     const LocalizationJobSummary& s = it->second;
-    auto& a = acc[{std::to_string(cell.gap_class_min) + " min", cell.feature}];
-    a.first = std::max(a.first, s.max_gap_m);
-    a.second.first += s.num_within_55cm;
-    a.second.second += s.num_frames;
+    ClassSums& a = acc[{std::to_string(cell.gap_class_min) + " min", cell.feature}];
+    a.max_gap_m = std::max(a.max_gap_m, s.max_gap_m);
+    a.within += s.num_within_55cm;
+    a.frames += s.num_frames;
+    if (s.num_within_55cm_bound >= 0) {
+      a.bound += s.num_within_55cm_bound;
+    } else {
+      a.bound_known = false;
+    }
     out << cell.feature << "," << cell.map_session << "," << cell.localization_session << ","
         << cell.gap_min << "," << cell.gap_class_min << "," << s.max_gap_m << ","
-        << 100.0 * s.num_within_55cm / s.num_frames << "\n";
+        << 100.0 * s.num_within_55cm / s.num_frames << ","
+        << 100.0 * s.num_relocalized / s.num_frames << ",";
+    if (s.num_within_55cm_bound >= 0) out << 100.0 * s.num_within_55cm_bound / s.num_frames;
+    out << "\n";
   }
   for (const auto& [key, a] : acc) {
-    max_gap.SetMeasured(key.first, key.second, a.first);
-    within.SetMeasured(key.first, key.second, 100.0 * a.second.first / a.second.second);
+    max_gap.SetMeasured(key.first, key.second, a.max_gap_m);
+    within.SetMeasured(key.first, key.second, 100.0 * a.within / a.frames);
+    if (a.bound_known) bound.SetMeasured(key.first, key.second, 100.0 * a.bound / a.frames);
   }
   if (paper) {
     for (const std::string& row : rows) {
@@ -373,7 +395,7 @@ std::vector<ReportTable> ConsecutiveTables(const ExperimentOptions& options,
     }
   }
   *csv = out.str();
-  return {max_gap, within};
+  return {max_gap, within, bound};
 }
 
 SingleMapMatrix BuildSingleMapMatrix(const ExperimentOptions& options, const ExperimentPlan& plan,

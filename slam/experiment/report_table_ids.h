@@ -20,6 +20,7 @@ inline constexpr char kTableTiming[] = "timing";
 inline constexpr char kTableTimingBudget[] = "timing_budget";
 inline constexpr char kTableConsecutiveMaxGapM[] = "consecutive_max_gap_m";
 inline constexpr char kTableConsecutiveWithin55cmPct[] = "consecutive_within_55cm_pct";
+inline constexpr char kTableConsecutiveWithin55cmBoundPct[] = "consecutive_within_55cm_bound_pct";
 
 // Rows of the timing table read back.
 inline constexpr char kRowFeatureDetectionMs[] = "feature_detection_ms";

@@ -242,6 +242,37 @@ TEST(ComputeAgreement, FeaturesWithinTheResolutionMayTradePlaces) {
   EXPECT_EQ(json.at("ranking").at("close_pairs").at(0).at("lower"), "BK");
 }
 
+TEST(ComputeAgreement, ConsecutiveSharesBesideThePathsBound) {
+  const std::vector<std::string> rows = {"30 min", "60 min"};
+  ReportTable within(kTableConsecutiveWithin55cmPct, "within", rows, kFeatures);
+  ReportTable bound(kTableConsecutiveWithin55cmBoundPct, "bound", rows, kFeatures);
+  within.SetMeasured("30 min", "SU", 71.0);
+  within.SetPaper("30 min", "SU", 93.0);
+  bound.SetMeasured("30 min", "SU", 80.6);
+  within.SetMeasured("30 min", "OR", 40.0);  // no paper value: listed without one
+  bound.SetMeasured("30 min", "OR", 80.6);
+  within.SetMeasured("30 min", "SI", 67.0);  // bound not recorded: left out
+  within.SetMeasured("60 min", "SU", 55.0);
+  const AgreementReport agreement =
+      ComputeAgreement({Relocalization(), within, bound}, Matrix(true), Paper({}));
+  ASSERT_EQ(agreement.consecutive_bounds.size(), 1u);  // 60 min has no bound at all
+  const ConsecutiveBound& b = agreement.consecutive_bounds[0];
+  EXPECT_EQ(b.row, "30 min");
+  EXPECT_EQ(b.features, (std::vector<std::string>{"SU", "OR"}));
+  EXPECT_EQ(b.measured_pct, (std::vector<double>{71.0, 40.0}));
+  EXPECT_EQ(b.bound_pct, (std::vector<double>{80.6, 80.6}));
+  EXPECT_EQ(b.paper_pct[0], 93.0);
+  EXPECT_FALSE(b.paper_pct[1].has_value());
+  const std::string markdown = AgreementToMarkdown(agreement);
+  EXPECT_NE(markdown.find("30 min: SU 71/81 (93) OR 40/81;"), std::string::npos) << markdown;
+  const nlohmann::json json = AgreementToJson(agreement);
+  EXPECT_EQ(json.at("consecutive_bounds").at(0).at("paper_pct").at(1), nullptr);
+  // Without the bound table (reports written before it) there is no line.
+  const AgreementReport without = ComputeAgreement({Relocalization(), within}, Matrix(true), Paper({}));
+  EXPECT_TRUE(without.consecutive_bounds.empty());
+  EXPECT_EQ(AgreementToMarkdown(without).find("against the paths' bound"), std::string::npos);
+}
+
 TEST(AgreementOutput, MarkdownAndJsonCarryTheNumbers) {
   const AgreementReport agreement =
       ComputeAgreement({Relocalization()}, Matrix(true),

@@ -57,6 +57,7 @@ const char kLocalizationSummary[] = R"({
  "num_no_candidate": 0,
  "num_relocalized": 73,
  "num_within_55cm": 42,
+ "num_within_55cm_bound": 81,
  "num_within_threshold": [
   72,
   73,
@@ -123,6 +124,7 @@ TEST(JobSummaryCodec, ReadsAndRewritesALocalizationSummaryByteForByte) {
   EXPECT_TRUE(s.has_ground_truth);
   EXPECT_EQ(s.num_within_threshold, (std::array<int, 3>{72, 73, 73}));
   EXPECT_EQ(s.num_within_55cm, 42);
+  EXPECT_EQ(s.num_within_55cm_bound, 81);
   EXPECT_EQ(s.matched_session_per_frame, (std::vector<std::string>{"3", "", "3", "3", ""}));
   EXPECT_DOUBLE_EQ(s.mean_times_ms.transformation_estimation, 7.802482177777776);
   EXPECT_DOUBLE_EQ(s.median_lcd_te_ms, 10.818991);
@@ -152,7 +154,7 @@ TEST(JobSummaryCodec, ReadsAndRewritesAMapSummaryByteForByte) {
 TEST(JobSummaryCodec, OlderSummariesReadTheKeysAddedLaterAsDefaults) {
   nlohmann::json localization = nlohmann::json::parse(kLocalizationSummary);
   for (const char* key : {"map_load_s", "map_from_cache", "localizer_setup_s", "index_restore_s",
-                          "index_restored", "index_rebuild_reason"}) {
+                          "index_restored", "index_rebuild_reason", "num_within_55cm_bound"}) {
     localization.erase(key);
   }
   const LocalizationJobSummary s = ReadLocalizationJobSummary(JobWith(localization));
@@ -160,6 +162,7 @@ TEST(JobSummaryCodec, OlderSummariesReadTheKeysAddedLaterAsDefaults) {
   EXPECT_EQ(s.map_load_s, 0.0);
   EXPECT_FALSE(s.index_restored);
   EXPECT_EQ(s.index_rebuild_reason, "");
+  EXPECT_EQ(s.num_within_55cm_bound, -1);  // not recorded
 
   nlohmann::json map = nlohmann::json::parse(kMapSummary);
   map.erase("index_build_s");

@@ -2,9 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <sstream>
+
 #include "slam/core/check.h"
 #include "slam/experiment/job_results_json.h"
 #include "slam/experiment/job_runner.h"
+#include "slam/experiment/report_table_ids.h"
 #include "tests/testing/temp_dir.h"
 
 namespace duskmap {
@@ -44,6 +47,7 @@ class FakeExecutor : public JobExecutor {
       s.mean_jump_mm = 30 + h;
       s.max_gap_m = 1.0 + h / 10.0;
       s.num_within_55cm = 35 + h;
+      s.num_within_55cm_bound = 90;
       s.matched_session_per_frame.assign(100, job.map.sessions.front());
       WriteSummary(job_dir, ToJsonObject(s));
     } else if (job.kind == JobKind::kBuildMap) {
@@ -80,6 +84,23 @@ TEST(BuildReport, AggregatesCellsOverSessionsBesideThePaper) {
                    100.0 * (a.num_relocalized + f6.num_relocalized) / 200.0);
   EXPECT_FALSE(report.cells_csv.empty());
   EXPECT_FALSE(report.consecutive_csv.empty());
+  // The consecutive pair 1 -> 6: its share, re-localization and the path's bound.
+  const auto c = results.localization.at("localize/SI/1/6");
+  EXPECT_NE(report.consecutive_csv.find(
+                "within_55cm_pct,relocalized_pct,within_55cm_bound_pct\nSI,1,6,"),
+            std::string::npos)
+      << report.consecutive_csv;
+  std::ostringstream si_row;
+  si_row << "SI,1,6,169,120," << c.max_gap_m << "," << 100.0 * c.num_within_55cm / 100 << ","
+         << 100.0 * c.num_relocalized / 100 << ",90\n";
+  EXPECT_NE(report.consecutive_csv.find(si_row.str()), std::string::npos) << report.consecutive_csv;
+  const ReportTable* bound = nullptr;
+  for (const ReportTable& t : report.tables) {
+    if (t.id() == kTableConsecutiveWithin55cmBoundPct) bound = &t;
+  }
+  ASSERT_NE(bound, nullptr);
+  EXPECT_DOUBLE_EQ(*bound->At("120 min", "SI").measured, 90.0);
+  EXPECT_FALSE(bound->At("120 min", "SI").paper.has_value());
 
   // The three ground-truth thresholds over every SI localization job, each
   // once (maps 1, 6 and 1+6, sessions A and F; 1|6 reuses 1/A and 6/F).
