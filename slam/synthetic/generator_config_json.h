@@ -93,6 +93,8 @@ struct JsonCodec<LightingOptions> {
     f("ambient_leak", o.ambient_leak);
     f("light_texel_m", o.light_texel_m);
     f("sun_per_texel", o.sun_per_texel);
+    f("mesh_sun_per_sample", o.mesh_sun_per_sample);
+    f("mesh_sun_sample_m", o.mesh_sun_sample_m);
   }
 };
 

@@ -239,6 +239,8 @@ void LightingOptions::Check() const {
       << "lighting.ambient_leak must be in [0, 1), got " << ambient_leak;
   SLAM_THROW_IF_NOT(ConfigError, light_texel_m >= 0.01 && light_texel_m <= 0.5)
       << "lighting.light_texel_m must be in [0.01, 0.5], got " << light_texel_m;
+  SLAM_THROW_IF_NOT(ConfigError, mesh_sun_sample_m >= 0.001 && mesh_sun_sample_m <= 0.1)
+      << "lighting.mesh_sun_sample_m must be in [0.001, 0.1], got " << mesh_sun_sample_m;
   SLAM_THROW_IF_NOT(ConfigError, lamp_shade_nits_per_cd >= 0.0) << "lighting.lamp_shade_nits_per_cd must be >= 0";
   SLAM_THROW_IF_NOT(ConfigError, sky_log10_lux_knots.size() >= 2)
       << "lighting.sky_log10_lux_knots needs at least 2 knots";
@@ -454,6 +456,66 @@ std::vector<cv::Vec3f> AmbientPerRoom(const Scene& scene, const std::vector<Ligh
   return ambient;
 }
 
+// The sun's part of a mesh's light (MeshSun): per vertex its unshadowed term
+// and whether the vertex light includes it (as DirectIrradiance decided), and
+// samples over the triangles with a lit and a shadowed vertex that both face
+// the sun. A triangle whose lit vertices all face it or none do keeps the
+// vertices' interpolation (a terminator's fading needs no samples).
+MeshSun MeshSunOf(const Scene& scene, const SessionLighting& lighting, const RoomShadowing& room,
+                  const SceneMesh& mesh, double sample_m) {
+  MeshSun sun;
+  const size_t num_vertices = mesh.positions_in_world.size();
+  sun.vertex_sun.assign(num_vertices, cv::Vec3f(0, 0, 0));
+  sun.vertex_sun_visible.assign(num_vertices, 0);
+  sun.triangle_samples.assign(mesh.triangles.size(), -1);
+  const Eigen::Vector3d& to_sun = lighting.sun_direction_in_world;
+  if (lighting.sun_normal_lux_bgr[1] <= 0.0f || room.windows.empty()) return sun;
+  const float inv_pi = static_cast<float>(1.0 / kPi);
+  const auto reaches = [&](const Eigen::Vector3d& point, const Eigen::Vector3d& direction) {
+    for (const int w : room.windows) {
+      const Quad& window = scene.quads[static_cast<size_t>(w)];
+      if (window.normal().dot(point - window.origin_in_world) <= 0.0) continue;  // behind the window
+      if (SunThroughWindow(scene, room, window, point, direction, -1)) return true;
+    }
+    return false;
+  };
+  for (size_t v = 0; v < num_vertices; ++v) {
+    const Eigen::Vector3d n = mesh.normals_in_world[v].cast<double>();
+    const double cos_sun = n.dot(to_sun);
+    if (cos_sun <= 0.0) continue;
+    sun.vertex_sun[v] = Scale(lighting.sun_normal_lux_bgr, cos_sun) * inv_pi;
+    const Eigen::Vector3d p = mesh.positions_in_world[v].cast<double>() + 1e-3 * n;
+    sun.vertex_sun_visible[v] = reaches(p, to_sun) ? 1 : 0;
+  }
+  // The widest grid: a triangle's longest edge over the sample spacing, for
+  // edges up to 1 m (meshes are split at scene.furniture.max_edge_m).
+  const int max_intervals = static_cast<int>(std::ceil(1.0 / sample_m));
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const std::array<int, 3>& tri = mesh.triangles[t];
+    bool lit = false, shadowed = false;
+    Eigen::Vector3d normal_sum = Eigen::Vector3d::Zero();
+    for (const int v : tri) {
+      normal_sum += mesh.normals_in_world[static_cast<size_t>(v)].cast<double>();
+      if (Luminance(sun.vertex_sun[static_cast<size_t>(v)]) <= 0.0f) continue;
+      (sun.vertex_sun_visible[static_cast<size_t>(v)] ? lit : shadowed) = true;
+    }
+    if (!(lit && shadowed)) continue;
+    const std::array<Eigen::Vector3d, 3> corners = {
+        mesh.positions_in_world[static_cast<size_t>(tri[0])].cast<double>(),
+        mesh.positions_in_world[static_cast<size_t>(tri[1])].cast<double>(),
+        mesh.positions_in_world[static_cast<size_t>(tri[2])].cast<double>()};
+    // Off the surface by 1 mm on the side its vertex normals face (catalog
+    // models wind their faces either way).
+    Eigen::Vector3d face = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
+    if (face.squaredNorm() == 0.0) continue;
+    face.normalize();
+    if (face.dot(normal_sum) < 0.0) face = -face;
+    sun.triangle_samples[t] = static_cast<int>(sun.samples.size());
+    sun.samples.push_back(SampleTriangleSun(corners, 1e-3 * face, to_sun, sample_m, max_intervals, reaches));
+  }
+  return sun;
+}
+
 }  // namespace
 
 SessionRadiance PrepareSessionRadiance(const Scene& scene, const SessionLighting& lighting,
@@ -570,6 +632,7 @@ SessionRadiance PrepareSessionRadiance(const Scene& scene, const SessionLighting
   // along its normal, so that its own triangles do not shadow it) with the
   // room's ambient term.
   session.mesh_vertex_light.resize(scene.meshes.size());
+  if (options.mesh_sun_per_sample) session.mesh_sun.resize(scene.meshes.size());
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const SceneMesh& mesh = scene.meshes[m];
     const RoomShadowing& room = shadowing(mesh.room);
@@ -582,6 +645,9 @@ SessionRadiance PrepareSessionRadiance(const Scene& scene, const SessionLighting
       const Eigen::Vector3d p = mesh.positions_in_world[v].cast<double>() + 1e-3 * n;
       const IrradianceParts parts = DirectIrradiance(scene, lighting, room, p, n, -1);
       light[v] = (parts.total() + room_ambient) * inv_pi;
+    }
+    if (options.mesh_sun_per_sample) {
+      session.mesh_sun[m] = MeshSunOf(scene, lighting, room, mesh, options.mesh_sun_sample_m);
     }
   }
   return session;

@@ -11,6 +11,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "slam/synthetic/mesh_sun.h"
 #include "slam/synthetic/scene.h"
 #include "slam/synthetic/solar.h"
 
@@ -53,6 +54,13 @@ struct LightingOptions {
   // light_texel_m. Meshes keep the sun per vertex either way. Off: the
   // datasets generated before 2026-12-06, byte for byte.
   bool sun_per_texel = false;
+  // The sun per pixel over a mesh's triangles whose vertices disagree about
+  // it (one lit, one shadowed: a patch's edge crosses the triangle), from a
+  // barycentric grid of about mesh_sun_sample_m (mesh_sun.h), instead of a
+  // gradient between the vertices. Off: every mesh pixel interpolates its
+  // vertices' light, as before 2026-12-06.
+  bool mesh_sun_per_sample = false;
+  double mesh_sun_sample_m = 0.005;
 
   void Check() const;
 };
@@ -136,6 +144,10 @@ struct SessionRadiance {
   // pi, the radiance of a unit albedo there (nits, linear BGR); the renderer
   // interpolates it over each triangle and multiplies the texture's albedo.
   std::vector<std::vector<cv::Vec3f>> mesh_vertex_light;
+  // LightingOptions::mesh_sun_per_sample (empty when off): per scene mesh,
+  // the sun's part of its vertices' light and its samples over the triangles
+  // whose vertices disagree about it.
+  std::vector<MeshSun> mesh_sun;
 };
 
 // Lighting preparation of a session: quads and meshes. Meshes cast shadows

@@ -204,9 +204,11 @@ void Renderer::AddReflection(int mirror, const std::vector<cv::Mat>& radiance,
   }
 }
 
-void Renderer::RenderMeshes(const std::vector<std::vector<cv::Vec3f>>& vertex_light,
-                            const Rigid3d& camera_from_world, RenderedView* view) const {
+void Renderer::RenderMeshes(const SessionRadiance& radiance, const Rigid3d& camera_from_world,
+                            RenderedView* view) const {
+  const std::vector<std::vector<cv::Vec3f>>& vertex_light = radiance.mesh_vertex_light;
   SLAM_CHECK(vertex_light.size() == scene_.meshes.size());
+  SLAM_CHECK(radiance.mesh_sun.empty() || radiance.mesh_sun.size() == scene_.meshes.size());
   const cv::Size size(camera_.width, camera_.height);
   TriangleRasterTarget target;
   target.inv_depth = view->depth_m;  // shares the quads' inverse depths
@@ -274,7 +276,22 @@ void Renderer::RenderMeshes(const std::vector<std::vector<cv::Vec3f>>& vertex_li
       }
       const float b1 = bary_row[col][0], b2 = bary_row[col][1], b0 = 1.0f - b1 - b2;
       const std::vector<cv::Vec3f>& light = vertex_light[m];
-      const cv::Vec3f lit = light[tri[0]] * b0 + light[tri[1]] * b1 + light[tri[2]] * b2;
+      cv::Vec3f lit = light[tri[0]] * b0 + light[tri[1]] * b1 + light[tri[2]] * b2;
+      if (!radiance.mesh_sun.empty()) {
+        const MeshSun& sun = radiance.mesh_sun[m];
+        const int sampled = sun.triangle_samples[static_cast<size_t>(id - first_id[m])];
+        if (sampled >= 0) {
+          // The vertices' sun out, the sun at this pixel in.
+          const std::array<float, 3> b = {b0, b1, b2};
+          cv::Vec3f unshadowed(0, 0, 0);
+          for (int k = 0; k < 3; ++k) {
+            const cv::Vec3f& s = sun.vertex_sun[static_cast<size_t>(tri[k])];
+            unshadowed += s * b[k];
+            if (sun.vertex_sun_visible[static_cast<size_t>(tri[k])]) lit -= s * b[k];
+          }
+          lit += unshadowed * sun.samples[static_cast<size_t>(sampled)].At(b1, b2);
+        }
+      }
       const SceneMaterial& material =
           mesh.materials[static_cast<size_t>(mesh.triangle_material[static_cast<size_t>(id - first_id[m])])];
       cv::Vec3f albedo = material.diffuse_bgr;
@@ -308,7 +325,7 @@ void Renderer::Render(const SessionRadiance& radiance, const Rigid3d& world_from
                       RenderedView* view) const {
   SLAM_CHECK_MSG(!(has_mirrors_ && radiance.window_view.enabled),
                  "Renderer::Render: mirrors are not supported with lighting.window_view_in_camera");
-  RenderScene(radiance.quads, &radiance.mesh_vertex_light, &radiance.window_view, world_from_camera, view);
+  RenderScene(radiance.quads, &radiance, &radiance.window_view, world_from_camera, view);
 }
 
 void Renderer::Render(const std::vector<cv::Mat>& radiance, const Rigid3d& world_from_camera,
@@ -317,8 +334,7 @@ void Renderer::Render(const std::vector<cv::Mat>& radiance, const Rigid3d& world
   RenderScene(radiance, nullptr, nullptr, world_from_camera, view);
 }
 
-void Renderer::RenderScene(const std::vector<cv::Mat>& radiance,
-                           const std::vector<std::vector<cv::Vec3f>>* mesh_light,
+void Renderer::RenderScene(const std::vector<cv::Mat>& radiance, const SessionRadiance* meshes,
                            const WindowViewRadiance* window_view, const Rigid3d& world_from_camera,
                            RenderedView* view) const {
   SLAM_CHECK(radiance.size() == scene_.quads.size());
@@ -339,8 +355,8 @@ void Renderer::RenderScene(const std::vector<cv::Mat>& radiance,
   const std::vector<Texture> textures = TexturesOf(radiance);
   view->radiance.create(size, CV_32FC3);
   view->cos_incidence.create(size, CV_32FC1);
-  if (mesh_light != nullptr && !scene_.meshes.empty()) {
-    RenderMeshes(*mesh_light, camera_from_world, view);
+  if (meshes != nullptr && !scene_.meshes.empty()) {
+    RenderMeshes(*meshes, camera_from_world, view);
   }
   const int num_quads = static_cast<int>(scene_.quads.size());
   const double inv_fx = 1.0 / camera_.fx;

@@ -36,7 +36,8 @@ class Renderer {
   // then the meshes' triangles into the same depth buffer (both sides drawn:
   // catalog models have open, one-sided parts), each mesh pixel shaded with
   // its material's mip-mapped texture times the vertex light interpolated
-  // perspective-correctly. Mirrors reflect the quads only.
+  // perspective-correctly (with radiance.mesh_sun, the sun per pixel over the
+  // triangles it samples). Mirrors reflect the quads only.
   void Render(const SessionRadiance& radiance, const Rigid3d& world_from_camera,
               RenderedView* view) const;
   // Renders a scene without meshes with `radiance` from PrepareRadiance (one
@@ -63,15 +64,15 @@ class Renderer {
                       const MirrorMask* mask = nullptr) const;
   // `window_view`: what the windows show by viewing direction (null or
   // disabled: their textures as they are).
-  void RenderScene(const std::vector<cv::Mat>& radiance,
-                   const std::vector<std::vector<cv::Vec3f>>* mesh_light,
+  // `meshes`: the session's mesh light (null: a scene without meshes).
+  void RenderScene(const std::vector<cv::Mat>& radiance, const SessionRadiance* meshes,
                    const WindowViewRadiance* window_view,
                    const Rigid3d& world_from_camera, RenderedView* view) const;
   // Draws the meshes' triangles into view->depth_m (inverse depth, the
   // quads' already there), marks their pixels in view->surface_id and
   // shades them into view->radiance, view->cos_incidence.
-  void RenderMeshes(const std::vector<std::vector<cv::Vec3f>>& vertex_light,
-                    const Rigid3d& camera_from_world, RenderedView* view) const;
+  void RenderMeshes(const SessionRadiance& radiance, const Rigid3d& camera_from_world,
+                    RenderedView* view) const;
   // Blends the room reflected in mirror quad `mirror` into view->radiance.
   void AddReflection(int mirror, const std::vector<cv::Mat>& radiance,
                      const Rigid3d& camera_from_world, RenderedView* view) const;
