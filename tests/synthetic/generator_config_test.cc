@@ -39,8 +39,10 @@ TEST(ReadGeneratorConfig, DefaultConfigFileIsValidAndMatchesThePaper) {
   EXPECT_EQ(config.scene.bedroom_ceiling_cd, 0.0);  // the optional ceiling lights are off
   EXPECT_EQ(config.scene.living_ceiling_cd, 0.0);
   // Calibration run 22 (docs/synthetic_dataset.md): the sun per texel and the
-  // image processor's noise reduction, then local contrast.
+  // image processor's noise reduction, then local contrast; run 23: the sun
+  // per pixel on the furniture.
   EXPECT_TRUE(config.lighting.sun_per_texel);
+  EXPECT_TRUE(config.lighting.mesh_sun_per_sample);
   EXPECT_EQ(config.camera.noise_reduction, 1.5);
   EXPECT_EQ(config.camera.sharpen_sigma_px, 5.0);
   EXPECT_EQ(config.camera.sharpen_amount, 0.5);
