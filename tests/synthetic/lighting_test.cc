@@ -8,6 +8,7 @@
 #include "slam/synthetic/apartment.h"
 #include "slam/synthetic/generator_config.h"
 #include "slam/synthetic/renderer.h"
+#include "one_window_scene.h"
 #include "small_camera.h"
 
 namespace duskmap {
@@ -223,23 +224,6 @@ TEST(LightingOptions, TheHorizonIsAnElevationABuildingCouldHave) {
   }
 }
 
-// A window 2 m wide from 0.9 to 2.1 m in the plane x = 0, the room at x > 0.
-Scene OneWindowScene() {
-  Scene scene;
-  scene.room_names = {"test room"};
-  Quad window;
-  window.origin_in_world = Eigen::Vector3d(0.0, -1.0, 0.9);
-  window.u_axis = Eigen::Vector3d::UnitY();  // normal u x v = +x, into the room
-  window.v_axis = Eigen::Vector3d::UnitZ();
-  window.size_u_m = 2.0;
-  window.size_v_m = 1.2;
-  window.albedo = cv::Mat(8, 8, CV_32FC3, cv::Scalar(1, 1, 1));
-  window.emission = Emission::kSky;
-  window.room = 0;
-  scene.quads.push_back(window);
-  return scene;
-}
-
 // Brute force over the window: each element's radiance is decided by the
 // elevation of the direction from the point through it.
 double IntegrateWindow(const Eigen::Vector3d& point, const Eigen::Vector3d& normal, double facade_top_deg,
@@ -317,13 +301,8 @@ TEST(PrepareSessionRadiance, TheSunPerTexelDrawsThePatchTheWindowCasts) {
   floor.albedo = cv::Mat(300, 300, CV_32FC3, cv::Scalar(0.5, 0.5, 0.5));
   scene.quads.push_back(floor);
   LightingOptions options;
-  options.ambient_fraction = 0.0;
-  options.ambient_leak = 0.0;
-  SessionLighting l = ComputeSessionLighting(options, scene, 12.0);
-  const Eigen::Vector3d to_sun = Eigen::Vector3d(-0.8, 0.3, 0.6).normalized();
-  l.sun_direction_in_world = to_sun;
-  l.sun_normal_lux_bgr = cv::Vec3f(1000, 1000, 1000);
-  l.sky_nits_bgr = cv::Vec3f(0, 0, 0);
+  const SessionLighting l = LowSunAlone(scene, &options);
+  const Eigen::Vector3d& to_sun = l.sun_direction_in_world;
   const double cos_sun = to_sun.z();
 
   options.sun_per_texel = true;

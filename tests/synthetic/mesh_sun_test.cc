@@ -12,6 +12,7 @@
 #include "slam/synthetic/lighting.h"
 #include "slam/synthetic/renderer.h"
 #include "slam/synthetic/scene_mesh.h"
+#include "one_window_scene.h"
 #include "small_camera.h"
 
 namespace duskmap {
@@ -59,23 +60,11 @@ TEST(SampleTriangleSun, SamplesTheGridOfTheSpacingAndCapsIt) {
   EXPECT_EQ(SampleTriangleSun(corners, {0, 0, 0.001}, Eigen::Vector3d::UnitZ(), 0.005, 8, reaches).intervals, 8);
 }
 
-// A window 2 m wide from 0.9 to 2.1 m in the plane x = 0, the room at x > 0,
-// and a 1 m square of furniture 0.5 m above the floor, facing up, where the
-// sun patch's side edge (from the window's edge at y = 1) crosses it on a
-// slant to the mesh's 12 cm edge splits.
+// OneWindowScene's window, and a 1 m square of furniture 0.5 m above the
+// floor, facing up, where the sun patch's side edge (from the window's edge
+// at y = 1) crosses it on a slant to the mesh's 12 cm edge splits.
 Scene WindowAndTable() {
-  Scene scene;
-  scene.room_names = {"test room"};
-  Quad window;
-  window.origin_in_world = Eigen::Vector3d(0.0, -1.0, 0.9);
-  window.u_axis = Eigen::Vector3d::UnitY();  // normal +x, into the room
-  window.v_axis = Eigen::Vector3d::UnitZ();
-  window.size_u_m = 2.0;
-  window.size_v_m = 1.2;
-  window.albedo = cv::Mat(8, 8, CV_32FC3, cv::Scalar(1, 1, 1));
-  window.emission = Emission::kSky;
-  window.room = 0;
-  scene.quads.push_back(window);
+  Scene scene = OneWindowScene();
   TriangleMesh top;
   top.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
   top.normals = {{0, 0, 1}};
@@ -95,13 +84,8 @@ Scene WindowAndTable() {
 TEST(PrepareSessionRadiance, TheSunPerSampleDrawsAPatchEdgeStraightAcrossAMesh) {
   const Scene scene = WindowAndTable();
   LightingOptions options;
-  options.ambient_fraction = 0.0;
-  options.ambient_leak = 0.0;
-  SessionLighting l = ComputeSessionLighting(options, scene, 12.0);
-  const Eigen::Vector3d to_sun = Eigen::Vector3d(-0.8, 0.3, 0.6).normalized();
-  l.sun_direction_in_world = to_sun;
-  l.sun_normal_lux_bgr = cv::Vec3f(1000, 1000, 1000);
-  l.sky_nits_bgr = cv::Vec3f(0, 0, 0);
+  const SessionLighting l = LowSunAlone(scene, &options);
+  const Eigen::Vector3d& to_sun = l.sun_direction_in_world;
   const double full = 1000.0 * to_sun.z() / M_PI;  // a sunlit white pixel, nits
 
   // Looking straight down at the square from 1.5 m above it.
