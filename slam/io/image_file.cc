@@ -26,6 +26,7 @@ void WriteImageFile(const std::string& path, const cv::Mat& image, const std::ve
   SLAM_THROW_IF_NOT(InputError, file != nullptr)
       << path << ": cannot write image: " << std::strerror(errno);
   int failure = 0;
+  errno = 0;  // a short write's reason is the system's only if a call set it here
   if (std::fwrite(bytes.data(), 1, bytes.size(), file) != bytes.size()) failure = errno ? errno : EIO;
   if (std::fclose(file) != 0 && failure == 0) failure = errno ? errno : EIO;
   if (failure != 0) {

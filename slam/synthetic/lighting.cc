@@ -459,8 +459,9 @@ std::vector<cv::Vec3f> AmbientPerRoom(const Scene& scene, const std::vector<Ligh
 // The sun's part of a mesh's light (MeshSun): per vertex its unshadowed term
 // and whether the vertex light includes it (as DirectIrradiance decided), and
 // samples over the triangles with a lit and a shadowed vertex that both face
-// the sun. A triangle whose lit vertices all face it or none do keeps the
-// vertices' interpolation (a terminator's fading needs no samples).
+// the sun. A triangle whose sun-facing vertices agree keeps the vertices'
+// interpolation (a terminator's fading towards a vertex facing away needs no
+// samples).
 MeshSun MeshSunOf(const Scene& scene, const SessionLighting& lighting, const RoomShadowing& room,
                   const SceneMesh& mesh, double sample_m) {
   MeshSun sun;
