@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <utility>
 
 #include "slam/core/check.h"
 #include "slam/synthetic/quad_bvh.h"
@@ -128,6 +129,19 @@ bool SunThroughWindow(const Scene& scene, const RoomShadowing& room, const Quad&
   const int row = std::clamp(static_cast<int>(hit.dot(window.v_axis) / window.size_v_m * window.albedo.rows), 0, window.albedo.rows - 1);
   if (Luminance(window.albedo.at<cv::Vec3f>(row, col)) < kMullionLuminance) return false;
   return !Occluded(scene, room, point, to_sun, d_window, receiver_quad);
+}
+
+// Whether the sun reaches `point` through one of the room's windows it lies
+// in front of (the per-texel and per-sample tests; DirectIrradiance runs the
+// same test inside its loop over the windows' light).
+bool SunReachesPoint(const Scene& scene, const RoomShadowing& room, const Eigen::Vector3d& point,
+                     const Eigen::Vector3d& to_sun, int receiver_quad) {
+  for (const int w : room.windows) {
+    const Quad& window = scene.quads[static_cast<size_t>(w)];
+    if (window.normal().dot(point - window.origin_in_world) <= 0.0) continue;  // behind the window
+    if (SunThroughWindow(scene, room, window, point, to_sun, receiver_quad)) return true;
+  }
+  return false;
 }
 
 IrradianceParts DirectIrradiance(const Scene& scene, const SessionLighting& lighting,
@@ -457,36 +471,28 @@ std::vector<cv::Vec3f> AmbientPerRoom(const Scene& scene, const std::vector<Ligh
 }
 
 // The sun's part of a mesh's light (MeshSun): per vertex its unshadowed term
-// and whether the vertex light includes it (as DirectIrradiance decided), and
-// samples over the triangles with a lit and a shadowed vertex that both face
-// the sun. A triangle whose sun-facing vertices agree keeps the vertices'
-// interpolation (a terminator's fading towards a vertex facing away needs no
-// samples).
+// and `vertex_sun_visible`, whether the vertex light includes it (as
+// DirectIrradiance decided), and samples over the triangles with a lit and a
+// shadowed vertex that both face the sun. A triangle whose sun-facing
+// vertices agree keeps the vertices' interpolation (a terminator's fading
+// towards a vertex facing away needs no samples).
 MeshSun MeshSunOf(const Scene& scene, const SessionLighting& lighting, const RoomShadowing& room,
-                  const SceneMesh& mesh, double sample_m) {
+                  const SceneMesh& mesh, std::vector<uint8_t> vertex_sun_visible, double sample_m) {
   MeshSun sun;
   const size_t num_vertices = mesh.positions_in_world.size();
+  SLAM_CHECK(vertex_sun_visible.size() == num_vertices);
   sun.vertex_sun.assign(num_vertices, cv::Vec3f(0, 0, 0));
-  sun.vertex_sun_visible.assign(num_vertices, 0);
+  sun.vertex_sun_visible = std::move(vertex_sun_visible);
   sun.triangle_samples.assign(mesh.triangles.size(), -1);
   const Eigen::Vector3d& to_sun = lighting.sun_direction_in_world;
   if (lighting.sun_normal_lux_bgr[1] <= 0.0f || room.windows.empty()) return sun;
   const float inv_pi = static_cast<float>(1.0 / kPi);
   const auto reaches = [&](const Eigen::Vector3d& point, const Eigen::Vector3d& direction) {
-    for (const int w : room.windows) {
-      const Quad& window = scene.quads[static_cast<size_t>(w)];
-      if (window.normal().dot(point - window.origin_in_world) <= 0.0) continue;  // behind the window
-      if (SunThroughWindow(scene, room, window, point, direction, -1)) return true;
-    }
-    return false;
+    return SunReachesPoint(scene, room, point, direction, -1);
   };
   for (size_t v = 0; v < num_vertices; ++v) {
-    const Eigen::Vector3d n = mesh.normals_in_world[v].cast<double>();
-    const double cos_sun = n.dot(to_sun);
-    if (cos_sun <= 0.0) continue;
-    sun.vertex_sun[v] = Scale(lighting.sun_normal_lux_bgr, cos_sun) * inv_pi;
-    const Eigen::Vector3d p = mesh.positions_in_world[v].cast<double>() + 1e-3 * n;
-    sun.vertex_sun_visible[v] = reaches(p, to_sun) ? 1 : 0;
+    const double cos_sun = mesh.normals_in_world[v].cast<double>().dot(to_sun);
+    if (cos_sun > 0.0) sun.vertex_sun[v] = Scale(lighting.sun_normal_lux_bgr, cos_sun) * inv_pi;
   }
   // The widest grid: a triangle's longest edge over the sample spacing, for
   // edges up to 1 m (meshes are split at scene.furniture.max_edge_m).
@@ -552,13 +558,7 @@ SessionRadiance PrepareSessionRadiance(const Scene& scene, const SessionLighting
       const Eigen::Vector3d offset = 1e-3 * q.normal();
       const int receiver = static_cast<int>(i);
       const auto reaches = [&](const Eigen::Vector3d& point, const Eigen::Vector3d& direction) {
-        const Eigen::Vector3d p = point + offset;
-        for (const int w : room.windows) {
-          const Quad& window = scene.quads[static_cast<size_t>(w)];
-          if (window.normal().dot(p - window.origin_in_world) <= 0.0) continue;  // behind the window
-          if (SunThroughWindow(scene, room, window, p, direction, receiver)) return true;
-        }
-        return false;
+        return SunReachesPoint(scene, room, point + offset, direction, receiver);
       };
       sun_visibility[i] = SunVisibility(q, q.albedo.size(), to_sun, reaches);
       sun_mean[i] = Scale(lighting.sun_normal_lux_bgr, cos_sun * cv::mean(sun_visibility[i])[0]);
@@ -641,14 +641,18 @@ SessionRadiance PrepareSessionRadiance(const Scene& scene, const SessionLighting
     const cv::Vec3f room_ambient = known_room ? ambient[static_cast<size_t>(mesh.room)] : cv::Vec3f(0, 0, 0);
     std::vector<cv::Vec3f>& light = session.mesh_vertex_light[m];
     light.resize(mesh.positions_in_world.size());
+    // With mesh_sun_per_sample: whether each vertex's light includes the sun.
+    std::vector<uint8_t> sun_visible(options.mesh_sun_per_sample ? light.size() : 0, 0);
     for (size_t v = 0; v < light.size(); ++v) {
       const Eigen::Vector3d n = mesh.normals_in_world[v].cast<double>();
       const Eigen::Vector3d p = mesh.positions_in_world[v].cast<double>() + 1e-3 * n;
       const IrradianceParts parts = DirectIrradiance(scene, lighting, room, p, n, -1);
       light[v] = (parts.total() + room_ambient) * inv_pi;
+      if (!sun_visible.empty()) sun_visible[v] = Luminance(parts.sun) > 0.0f ? 1 : 0;
     }
     if (options.mesh_sun_per_sample) {
-      session.mesh_sun[m] = MeshSunOf(scene, lighting, room, mesh, options.mesh_sun_sample_m);
+      session.mesh_sun[m] =
+          MeshSunOf(scene, lighting, room, mesh, std::move(sun_visible), options.mesh_sun_sample_m);
     }
   }
   return session;
