@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include <opencv2/core/utility.hpp>
@@ -18,40 +19,78 @@
 #include "slam/engine/feature_export.h"
 #include "slam/features/epipolar_eval.h"
 #include "slam/features/feature_options_json.h"
+#include "slam/features/eval_pairs.h"
+#include "slam/features/feature_options.h"
+#include "slam/features/image_sequence.h"
 #include "slam/features/sequence_eval.h"
 #include "slam/io/output_safety.h"
+#include "slam/io/path_status.h"
 
 namespace duskmap::cli {
 namespace {
 
+std::string Joined(const std::vector<std::string>& names, const char* separator) {
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "" : separator) + name;
+  return text;
+}
+
 struct EvalArgs {
   std::string data;
-  std::string types = "surf,sift,brief,brisk,kaze,daisy,orb,akaze,freak";
+  std::string types = Joined(BuiltInFeatureTypeNames(), ",");
   std::string config;
   std::string out_dir;
   std::string layout = "auto";
+  std::string pairs;
+  std::string pairs_file;
   int threads = 1;
 };
 
-std::vector<std::string> SplitComma(const std::string& text) {
-  std::vector<std::string> parts;
+// "--types surf,SIFT": each name as FeatureTypeNames() spells it.
+std::vector<std::string> ParseTypes(const std::string& text) {
+  std::vector<std::string> types;
   std::stringstream in(text);
   for (std::string part; std::getline(in, part, ',');) {
-    if (!part.empty()) parts.push_back(part);
+    if (!part.empty()) types.push_back(FeatureTypeFromName(part, "features eval: --types"));
   }
-  return parts;
+  SLAM_THROW_IF_NOT(ConfigError, !types.empty()) << "features eval: --types names no feature type";
+  return types;
 }
 
 void WriteFile(const std::filesystem::path& path, const std::string& text) {
   std::ofstream out(path);
   SLAM_THROW_IF_NOT(InputError, out.good()) << path.string() << ": cannot write";
   out << text;
+  out.flush();
+  SLAM_THROW_IF_NOT(InputError, out.good()) << path.string() << ": write failed";
+}
+
+// --out is a folder: refused when something else is there, created when absent.
+void PrepareOutFolder(const std::string& out_dir) {
+  const std::filesystem::file_status status = PathStatus(out_dir);
+  SLAM_THROW_IF_NOT(ConfigError, status.type() == std::filesystem::file_type::not_found ||
+                                     status.type() == std::filesystem::file_type::directory)
+      << "features eval: --out " << out_dir
+      << ": exists and is not a folder (features_eval.json and features_eval.md are written into a folder)";
+  std::error_code error;
+  std::filesystem::create_directories(out_dir, error);
+  SLAM_THROW_IF_NOT(InputError, !error) << out_dir << ": cannot create the folder: " << error.message();
+}
+
+std::vector<PairSelector> PairSelectors(const EvalArgs& args) {
+  if (!args.pairs_file.empty()) return ReadPairListFile(args.pairs_file);
+  if (!args.pairs.empty()) return ParsePairList(args.pairs);
+  return {};
 }
 
 int RunEval(const EvalArgs& args) {
   SLAM_THROW_IF_NOT(ConfigError, args.threads >= 1) << "features eval: --threads must be >= 1";
-  SLAM_THROW_IF_NOT(ConfigError, args.layout == "auto" || args.layout == "homography" || args.layout == "pairs")
-      << "features eval: --layout must be auto, homography or pairs, got '" << args.layout << "'";
+  SLAM_THROW_IF_NOT(ConfigError, args.layout == "auto" || args.layout == "homography" ||
+                                     args.layout == "static" || args.layout == "pairs")
+      << "features eval: --layout must be auto, homography, static or pairs, got '" << args.layout << "'";
+  const std::vector<std::string> types = ParseTypes(args.types);
+  const std::vector<PairSelector> selectors = PairSelectors(args);
+  if (!args.out_dir.empty()) PrepareOutFolder(args.out_dir);
   cv::setNumThreads(args.threads);  // timings per core by default, like the benchmark
   FeatureOptions features;
   if (!args.config.empty()) {
@@ -59,37 +98,58 @@ int RunEval(const EvalArgs& args) {
     features = ReadJsonOptions<FeatureOptions>(fields);
   }
   std::string table;
+  std::string header;
   nlohmann::json json;
-  const std::vector<CorrespondencePair> pairs =
-      args.layout == "homography" ? std::vector<CorrespondencePair>() : FindCorrespondencePairs(args.data);
+  const bool sequence_layout = args.layout == "homography" || args.layout == "static";
+  std::vector<CorrespondencePair> pairs =
+      sequence_layout ? std::vector<CorrespondencePair>() : FindCorrespondencePairs(args.data);
   SLAM_THROW_IF_NOT(InputError, args.layout != "pairs" || !pairs.empty())
       << args.data << ": no pair folder (01.*, 02.*, corrs.txt) here or one or two levels down";
   if (!pairs.empty()) {
+    if (!selectors.empty()) pairs = SelectCorrespondencePairs(pairs, selectors);
     EpipolarEvalOptions options;
-    options.types = SplitComma(args.types);
+    options.types = types;
     options.features = features;
     std::cout << "features eval: " << pairs.size() << " pair(s) with hand-clicked correspondences in "
               << args.data << ", " << options.types.size() << " type(s)\n";
     const EpipolarEvalResult result = EvaluateOnCorrespondencePairs(pairs, options);
+    header = "Pairs: " + args.data + "\n\n";
     table = ToMarkdown(result);
     json = ToJson(result);
   } else {
+    std::optional<SequenceLayout> layout;
+    if (args.layout == "homography") layout = SequenceLayout::kHomography;
+    if (args.layout == "static") layout = SequenceLayout::kStatic;
+    SequenceSet set = FindImageSequences(args.data, layout);
+    std::string how = set.detected ? (set.layout == SequenceLayout::kStatic ? "detected: no H1toNp file"
+                                                                            : "detected: H1toNp files")
+                                   : "--layout " + args.layout;
+    if (set.layout == SequenceLayout::kStatic) {
+      for (const ImageSequence& seq : set.sequences) {
+        if (HasHomographyFiles(seq.directory)) how += "; the H files of " + seq.name + " are not used";
+      }
+    }
+    if (!selectors.empty()) SelectSequencePairs(selectors, &set.sequences);
     FeatureEvalOptions options;
-    options.types = SplitComma(args.types);
+    options.types = types;
     options.features = features;
-    const auto sequences = FindHomographySequences(args.data);
-    std::cout << "features eval: " << sequences.size() << " sequence(s) in " << args.data << ", "
-              << options.types.size() << " type(s)\n";
-    const FeatureEvalResult result = EvaluateFeatures(sequences, options);
+    size_t pair_count = 0;
+    for (const ImageSequence& seq : set.sequences) pair_count += seq.pairs.size();
+    const std::string layout_line =
+        std::string("layout ") + SequenceLayoutName(set.layout) + " (" + how + ")";
+    std::cout << "features eval: " << set.sequences.size() << " sequence(s) in " << args.data << ", "
+              << layout_line << ", " << pair_count << " pair(s), " << options.types.size() << " type(s)\n";
+    const FeatureEvalResult result = EvaluateFeatures(set.sequences, options);
+    header = "Sequences: " + args.data + "\n\nLayout: " + std::string(SequenceLayoutName(set.layout)) + " (" +
+             how + ")\n\n";
     table = ToMarkdown(result);
     json = ToJson(result);
   }
   std::cout << table;
   if (!args.out_dir.empty()) {
-    std::filesystem::create_directories(args.out_dir);
     const std::filesystem::path dir(args.out_dir);
     WriteFile(dir / "features_eval.json", json.dump(2) + "\n");
-    WriteFile(dir / "features_eval.md", "Sequences: " + args.data + "\n\n" + table);
+    WriteFile(dir / "features_eval.md", header + table);
     std::cout << "wrote " << (dir / "features_eval.json").string() << " and "
               << (dir / "features_eval.md").string() << "\n";
   }
@@ -128,12 +188,13 @@ int RunExport(const ExportArgs& args, bool type_given) {
   }
   SLAM_THROW_IF_NOT(ConfigError, args.output.empty() || type_given || !args.config.empty())
       << "features export: --output needs --type (or a --config naming one)";
-  if (type_given) features.type = args.type;
+  if (type_given) features.type = FeatureTypeFromName(args.type, "features export: --type");
   features.Check();
   FeatureExportOptions options;
   options.sessions = args.sessions;
   options.output_path = args.output;
   options.image_list_path = args.image_list;
+  options.overwrite = args.overwrite;
   options.Check();
   const auto dataset = OpenDataset(args.dataset, args.format);
   const FeatureExportSummary summary =
@@ -158,12 +219,23 @@ RunFn SetupFeatures(CLI::App& command) {
   CLI::App* eval = command.add_subcommand(
       "eval", "Per feature type: repeatability, matching score, MMA and homography accuracy on sequences, or pairs solved by epipolar geometry on WxBS-style pairs");
   eval->add_option("--data", args->data,
-                   "sequence folder (img1 + imgN + H1toNp), pair folder (01.*, 02.*, corrs.txt: "
+                   "sequence folder (img1 + imgN + H1toNp, or a fixed camera's images), pair folder (01.*, 02.*, corrs.txt: "
                    "WxBS), or a folder of either (pairs also in category folders)")
       ->required();
   eval->add_option("--layout", args->layout,
-                   "auto (pairs when any pair folder is found), homography, pairs");
-  eval->add_option("--types", args->types, "comma-separated feature types");
+                   "auto (default: pairs when a pair folder is found, else homography when the sequences have "
+                   "H1toNp files, static when none), homography, static (a fixed camera: identity ground "
+                   "truth, no H files), pairs");
+  eval->add_option("--types", args->types,
+                   "comma-separated feature types, any case: " + Joined(FeatureTypeNames(), ", ") +
+                       " (superpoint, onnx and h5 need --config); default: " + args->types);
+  CLI::Option* pairs_option = eval->add_option(
+      "--pairs", args->pairs,
+      "score only these pairs: image indices <i>-<j> (1-5,1-6), <sequence>/<i>-<j> for one sequence, or "
+      "pair names (WGALBS/kremlin) in the pairs layout; default: the first image (img1) with every other");
+  eval->add_option("--pairs-file", args->pairs_file,
+                   "the same as --pairs, from a file: comma- or line-separated, '#' starts a comment")
+      ->excludes(pairs_option);
   eval->add_option("--config", args->config, "JSON feature options (FeatureOptions)");
   eval->add_option("--threads", args->threads, "OpenCV threads (1: per-core timings)");
   eval->add_option("--out", args->out_dir, "folder for features_eval.json and features_eval.md");
@@ -175,7 +247,8 @@ RunFn SetupFeatures(CLI::App& command) {
                        "dataset format: auto (default), synthetic, tum, rtabmap-images");
   exporter->add_option("--sessions", export_args->sessions, "sessions to export (default: all)")
       ->delimiter(',');
-  exporter->add_option("--type", export_args->type, "feature type (surf, sift, brief, ..., h5)");
+  exporter->add_option("--type", export_args->type,
+                       "feature type, any case: " + Joined(FeatureTypeNames(), ", "));
   exporter->add_option("--config", export_args->config, "JSON feature options (FeatureOptions)");
   exporter->add_option("--output", export_args->output,
                        "the .h5 to write: one group per image, \"<session>/<image name>\"");

@@ -24,9 +24,20 @@ namespace fs = std::filesystem;
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
+constexpr const char* kPairImageExtensions[] = {".png", ".jpg", ".jpeg", ".ppm", ".bmp"};
+constexpr const char* kPairImagePattern = "{png,jpg,jpeg,ppm,bmp}";
+
+bool IsImageName(const fs::path& path) {
+  const std::string extension = path.extension().string();
+  for (const char* e : kPairImageExtensions) {
+    if (extension == e) return true;
+  }
+  return extension == ".pgm";
+}
+
 // The image "<stem>.*" of a pair folder (png, jpg, jpeg, ppm, bmp); "" when none.
 std::string FindImage(const fs::path& directory, const std::string& stem) {
-  for (const char* extension : {".png", ".jpg", ".jpeg", ".ppm", ".bmp"}) {
+  for (const char* extension : kPairImageExtensions) {
     const fs::path path = directory / (stem + extension);
     std::error_code error;
     if (fs::is_regular_file(path, error)) return path.string();
@@ -102,7 +113,14 @@ void CheckInside(const CorrespondencePair& pair, const cv::Size& first, const cv
 }  // namespace
 
 bool IsCorrespondencePairFolder(const std::string& directory) {
-  return !FindImage(directory, "01").empty() && !FindImage(directory, "02").empty();
+  std::error_code error;
+  if (fs::is_regular_file(fs::path(directory) / "corrs.txt", error)) return true;
+  if (FindImage(directory, "01").empty() && FindImage(directory, "02").empty()) return false;
+  for (fs::directory_iterator it(directory, error); !error && it != fs::directory_iterator(); it.increment(error)) {
+    const std::string stem = it->path().stem().string();
+    if (stem != "01" && stem != "02" && IsImageName(it->path())) return false;
+  }
+  return true;
 }
 
 CorrespondencePair ReadCorrespondencePair(const std::string& directory, const std::string& name,
@@ -112,11 +130,15 @@ CorrespondencePair ReadCorrespondencePair(const std::string& directory, const st
   pair.category = category;
   pair.first_path = FindImage(directory, "01");
   pair.second_path = FindImage(directory, "02");
-  SLAM_THROW_IF_NOT(InputError, !pair.first_path.empty() && !pair.second_path.empty())
-      << directory << ": a pair folder needs 01.* and 02.* images";
+  for (const char* stem : {"01", "02"}) {
+    SLAM_THROW_IF_NOT(InputError, !FindImage(directory, stem).empty())
+        << (fs::path(directory) / stem).string() << "." << kPairImagePattern
+        << ": missing (a pair folder holds 01.*, 02.* and corrs.txt)";
+  }
   const std::string corrs = (fs::path(directory) / "corrs.txt").string();
   std::ifstream in(corrs);
-  SLAM_THROW_IF_NOT(InputError, in.good()) << corrs << ": missing (the pair's correspondences)";
+  SLAM_THROW_IF_NOT(InputError, in.good())
+      << corrs << ": missing (the pair's correspondences; a fixed camera's images named 01, 02: --layout static)";
   int line_number = 0;
   for (std::string line; std::getline(in, line);) {
     ++line_number;
@@ -151,6 +173,25 @@ std::vector<CorrespondencePair> FindCorrespondencePairs(const std::string& root)
     }
   }
   return pairs;
+}
+
+std::vector<CorrespondencePair> SelectCorrespondencePairs(const std::vector<CorrespondencePair>& pairs,
+                                                          const std::vector<PairSelector>& selectors) {
+  std::vector<CorrespondencePair> selected;
+  for (const PairSelector& selector : selectors) {
+    const auto it = std::find_if(pairs.begin(), pairs.end(),
+                                 [&](const CorrespondencePair& p) { return p.name == selector.text; });
+    if (it != pairs.end()) {
+      selected.push_back(*it);
+      continue;
+    }
+    std::string names;
+    for (size_t i = 0; i < pairs.size() && i < 10; ++i) names += (i == 0 ? "" : ", ") + pairs[i].name;
+    if (pairs.size() > 10) names += ", ... (" + std::to_string(pairs.size()) + " in all)";
+    SLAM_THROW(ConfigError) << selector.origin << ": pair '" << selector.text << "' does not exist (pairs: "
+                            << names << ")";
+  }
+  return selected;
 }
 
 double SymmetricEpipolarDistancePx(const cv::Matx33d& f, const cv::Point2d& x1, const cv::Point2d& x2) {
@@ -319,6 +360,24 @@ std::string ToMarkdown(const EpipolarEvalResult& result) {
       out << "| " << t.type << " | " << (category.empty() ? "-" : category) << " | "
           << t.pairs_by_category.at(category) << " | " << solved[0] << " / " << solved[1] << " / "
           << solved[2] << " |\n";
+    }
+  }
+  out << "\nPer pair:\n\n| type | pair | keypoints | matches | inliers | median error px | solved @"
+      << px[0] << " / " << px[1] << " / " << px[2] << " px |\n| --- | --- | ---: | ---: | ---: | ---: | --- |\n";
+  for (const EpipolarTypeSummary& t : result.types) {
+    for (const EpipolarPairRecord& r : t.records) {
+      out << "| " << t.type << " | " << r.pair << " | " << r.keypoints_first << " / " << r.keypoints_second
+          << " | " << r.matches << " | " << r.inliers << " | ";
+      if (std::isfinite(r.median_error_px)) {
+        out << std::setprecision(2) << r.median_error_px << std::setprecision(1);
+      } else {
+        out << "–";
+      }
+      out << " |";
+      for (size_t k = 0; k < px.size(); ++k) {
+        out << (k == 0 ? " " : " / ") << (r.median_error_px <= px[k] ? "yes" : "no");
+      }
+      out << " |\n";
     }
   }
   return out.str();

@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 
+#include "slam/features/eval_pairs.h"
 #include "slam/features/feature_options.h"
 
 namespace duskmap {
@@ -29,23 +30,32 @@ struct CorrespondencePair {
   std::vector<cv::Vec4d> correspondences;  // x1 y1 x2 y2, pixels
 };
 
-// Whether `directory` holds a pair (01.* and 02.* images).
+// Whether `directory` is meant as a pair folder: it holds corrs.txt, or 01.*
+// or 02.* and no other image (a fixed camera's sequence may be named 01.png,
+// 02.png, 03.png, ...: image_sequence.h).
 bool IsCorrespondencePairFolder(const std::string& directory);
-// Reads one pair folder; throws InputError naming corrs.txt (and its line)
-// when it is missing, a row is not four finite numbers, or it has no row.
+// Reads one pair folder; throws InputError naming the missing file (01.*,
+// 02.* or corrs.txt), or corrs.txt (and its line) when a row is not four
+// finite numbers or it has no row.
 CorrespondencePair ReadCorrespondencePair(const std::string& directory, const std::string& name,
                                           const std::string& category);
-// `root` itself when it is a pair, else its pair sub-folders and the pair
-// folders of its category sub-folders (sorted by name); empty when none.
+// `root` itself when it is a pair folder, else its pair sub-folders and the
+// pair folders of its category sub-folders (sorted by name); empty when
+// none. A pair folder missing a file is an error, never skipped.
 std::vector<CorrespondencePair> FindCorrespondencePairs(const std::string& root);
+
+// Keeps the pairs named by `selectors` ("WGALBS/kremlin": a pair's name), in
+// the selectors' order; ConfigError naming the selector's origin when no
+// pair has that name.
+std::vector<CorrespondencePair> SelectCorrespondencePairs(const std::vector<CorrespondencePair>& pairs,
+                                                          const std::vector<PairSelector>& selectors);
 
 // The symmetric epipolar distance of x1 <-> x2 under F (x2^T F x1 = 0): the
 // mean of x2's distance to the line F x1 and x1's to F^T x2, pixels.
 double SymmetricEpipolarDistancePx(const cv::Matx33d& f, const cv::Point2d& x1, const cv::Point2d& x2);
 
 struct EpipolarEvalOptions {
-  std::vector<std::string> types = {"surf", "sift", "brief", "brisk", "kaze",
-                                    "daisy", "orb", "akaze", "freak"};
+  std::vector<std::string> types = BuiltInFeatureTypeNames();
   FeatureOptions features;            // shared options; `type` is replaced per entry of `types`
   double float_ratio = 0.8;           // Lowe's ratio test, L2
   double binary_ratio = 0.8;          // the same over Hamming distances
@@ -92,7 +102,7 @@ EpipolarEvalResult EvaluateOnCorrespondencePairs(const std::vector<Correspondenc
 
 nlohmann::json ToJson(const EpipolarEvalResult& result);
 // One row per type: pairs solved at 2/5/10 px, median error, ms/image; then
-// solved counts per category.
+// solved counts per category; then one row per type and pair.
 std::string ToMarkdown(const EpipolarEvalResult& result);
 
 }  // namespace duskmap

@@ -1,6 +1,7 @@
 #include "slam/features/feature_options.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <initializer_list>
 
@@ -80,6 +81,12 @@ void SuperPointOptions::Check() const {
 
 namespace {
 
+std::string KnownTypes() {
+  std::string known;
+  for (const std::string& name : FeatureTypeNames()) known += (known.empty() ? "" : ", ") + name;
+  return known;
+}
+
 void CheckOneOf(const std::string& value, std::initializer_list<const char*> allowed,
                 const std::string& key) {
   std::string known;
@@ -127,10 +134,8 @@ void OnnxFeatureOptions::Check() const {
 void FeatureOptions::Check() const {
   const auto& names = FeatureTypeNames();
   if (std::find(names.begin(), names.end(), type) == names.end()) {
-    std::string known;
-    for (const std::string& name : names) known += (known.empty() ? "" : ", ") + name;
     SLAM_THROW(ConfigError) << "features.type: unknown feature type '" << type
-                            << "' (known: " << known
+                            << "' (known: " << KnownTypes()
                             << "; experiment configs use the paper's column codes SU, SI, ... instead)";
   }
   // 100,000 features of a 640x480 frame are one every 3 pixels: past any use.
@@ -158,11 +163,28 @@ void FeatureOptions::Check() const {
       << "features.onnx.model_path: features of type onnx need the model's .onnx file";
 }
 
-const std::vector<std::string>& FeatureTypeNames() {
-  static const std::vector<std::string> kNames = {"surf", "sift",  "brief", "brisk", "kaze",
-                                                  "daisy", "orb", "akaze", "freak", "superpoint",
-                                                  "onnx",  "h5"};
+const std::vector<std::string>& BuiltInFeatureTypeNames() {
+  static const std::vector<std::string> kNames = {"surf", "sift", "brief", "brisk", "kaze",
+                                                  "daisy", "orb", "akaze", "freak"};
   return kNames;
+}
+
+const std::vector<std::string>& FeatureTypeNames() {
+  static const std::vector<std::string> kNames = [] {
+    std::vector<std::string> names = BuiltInFeatureTypeNames();
+    names.insert(names.end(), {"superpoint", "onnx", "h5"});
+    return names;
+  }();
+  return kNames;
+}
+
+std::string FeatureTypeFromName(const std::string& name, const std::string& where) {
+  std::string lower = name;
+  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const auto& names = FeatureTypeNames();
+  SLAM_THROW_IF_NOT(ConfigError, std::find(names.begin(), names.end(), lower) != names.end())
+      << where << ": unknown feature type '" << name << "' (known: " << KnownTypes() << ")";
+  return lower;
 }
 
 }  // namespace duskmap

@@ -199,6 +199,14 @@ struct FeatureOptions {
 // surf, sift, brief, brisk, kaze, daisy, orb, akaze, freak, superpoint, onnx, h5.
 const std::vector<std::string>& FeatureTypeNames();
 
+// The types that need no file (every type but superpoint, onnx and h5, which
+// need a model or an .h5): the default of `duskmap features eval`.
+const std::vector<std::string>& BuiltInFeatureTypeNames();
+
+// `name` in any case ("SURF", "Sift") as its FeatureTypeNames() spelling;
+// ConfigError "<where>: unknown feature type '<name>' (known: ...)".
+std::string FeatureTypeFromName(const std::string& name, const std::string& where);
+
 // JSON: slam/features/feature_options_json.h.
 
 }  // namespace duskmap

@@ -2,11 +2,9 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
+#include <map>
 #include <sstream>
-
-#include <opencv2/imgcodecs.hpp>
 
 #include "slam/core/check.h"
 #include "slam/features/eval_image.h"
@@ -17,31 +15,16 @@ namespace duskmap {
 namespace fs = std::filesystem;
 namespace {
 
-std::string FindImage(const fs::path& dir, int index) {
-  for (const char* ext : {".ppm", ".png", ".jpg", ".pgm"}) {
-    const fs::path p = dir / ("img" + std::to_string(index) + ext);
-    if (fs::exists(p)) return p.string();
-  }
-  return "";
-}
-
-cv::Matx33d ReadHomography(const fs::path& path) {
-  std::ifstream in(path);
-  SLAM_THROW_IF_NOT(InputError, in.good()) << path.string() << ": cannot open homography";
-  cv::Matx33d h;
-  for (int i = 0; i < 9; ++i) {
-    SLAM_THROW_IF_NOT(InputError, static_cast<bool>(in >> h.val[i]))
-        << path.string() << ": expected 9 numbers";
-  }
-  SLAM_THROW_IF_NOT(InputError, std::abs(cv::determinant(h)) > 1e-12)
-      << path.string() << ": singular homography";
-  return h;
-}
-
 double Mean(double sum, int n) { return n == 0 ? 0.0 : sum / n; }
 
-TypeSummary EvaluateType(const std::vector<HomographySequence>& sequences,
-                         const FeatureEvalOptions& options, const std::string& type) {
+struct ExtractedImage {
+  std::string file;  // the file's name
+  cv::Size size;
+  FrameFeatures features;
+};
+
+TypeSummary EvaluateType(const std::vector<ImageSequence>& sequences, const FeatureEvalOptions& options,
+                         const std::string& type) {
   FeatureOptions feature_options = options.features;
   feature_options.type = type;
   const auto extractor = CreateFeatureExtractor(feature_options);
@@ -49,25 +32,37 @@ TypeSummary EvaluateType(const std::vector<HomographySequence>& sequences,
   s.type = type;
   double keypoints = 0.0, time_ms = 0.0, homographies = 0.0;
   int images = 0;
-  auto extract = [&](const cv::Mat& image) {
-    Stopwatch watch;
-    FrameFeatures f = extractor->Extract(image);
-    time_ms += watch.ElapsedMs();
-    keypoints += static_cast<double>(f.size());
-    ++images;
-    if (!f.empty()) s.descriptor_bytes = static_cast<int>(f.DescriptorBytes());
-    return f;
-  };
-  for (const HomographySequence& seq : sequences) {
-    const cv::Mat reference = ReadEvalImage(seq.reference_path);
-    const FrameFeatures reference_features = extract(reference);
-    for (size_t t = 0; t < seq.target_paths.size(); ++t) {
-      const cv::Mat target = ReadEvalImage(seq.target_paths[t]);
+  for (const ImageSequence& seq : sequences) {
+    std::map<int, ExtractedImage> extracted;  // by index, each image once
+    const auto image = [&](int index) -> const ExtractedImage& {
+      auto it = extracted.find(index);
+      if (it != extracted.end()) return it->second;
+      const SequenceImage* file = seq.Image(index);
+      SLAM_CHECK(file != nullptr);
+      const cv::Mat pixels = ReadEvalImage(file->path);
+      Stopwatch watch;
+      ExtractedImage e{fs::path(file->path).filename().string(), pixels.size(), extractor->Extract(pixels)};
+      time_ms += watch.ElapsedMs();
+      keypoints += static_cast<double>(e.features.size());
+      ++images;
+      if (!e.features.empty()) s.descriptor_bytes = static_cast<int>(e.features.DescriptorBytes());
+      return extracted.emplace(index, std::move(e)).first->second;
+    };
+    for (const SequencePair& pair : seq.pairs) {
+      const ExtractedImage& reference = image(pair.first_index);
+      const ExtractedImage& target = image(pair.second_index);
+      SLAM_THROW_IF_NOT(InputError, seq.layout != SequenceLayout::kStatic || reference.size == target.size)
+          << seq.Image(pair.second_index)->path << ": " << target.size.width << "x" << target.size.height
+          << ", but " << reference.file << " is " << reference.size.width << "x" << reference.size.height
+          << " (a fixed camera's images have one size)";
       PairRecord record;
       record.sequence = seq.name;
-      record.target_index = static_cast<int>(t) + 2;
-      record.metrics = EvaluatePair(reference_features, reference.size(), extract(target),
-                                    target.size(), seq.target_from_reference[t], options.metrics);
+      record.reference_index = pair.first_index;
+      record.target_index = pair.second_index;
+      record.reference_image = reference.file;
+      record.target_image = target.file;
+      record.metrics = EvaluatePair(reference.features, reference.size, target.features, target.size,
+                                    pair.second_from_first, options.metrics);
       const PairMetrics& m = record.metrics;
       s.repeatability += m.repeatability;
       s.matching_score += m.matching_score;
@@ -88,42 +83,6 @@ TypeSummary EvaluateType(const std::vector<HomographySequence>& sequences,
 
 }  // namespace
 
-HomographySequence ReadHomographySequence(const std::string& directory) {
-  const fs::path dir(directory);
-  HomographySequence seq;
-  seq.name = dir.filename().empty() ? dir.parent_path().filename().string() : dir.filename().string();
-  seq.reference_path = FindImage(dir, 1);
-  SLAM_THROW_IF_NOT(InputError, !seq.reference_path.empty())
-      << directory << ": no reference image img1.{ppm,png,jpg,pgm}";
-  for (int n = 2; n < 100; ++n) {
-    const std::string image = FindImage(dir, n);
-    const fs::path h = dir / ("H1to" + std::to_string(n) + "p");
-    if (image.empty() || !fs::exists(h)) break;
-    seq.target_paths.push_back(image);
-    seq.target_from_reference.push_back(ReadHomography(h));
-  }
-  SLAM_THROW_IF_NOT(InputError, !seq.target_paths.empty())
-      << directory << ": no target image with a homography (img2 + H1to2p)";
-  return seq;
-}
-
-std::vector<HomographySequence> FindHomographySequences(const std::string& root) {
-  SLAM_THROW_IF_NOT(InputError, fs::is_directory(root)) << root << ": not a directory";
-  if (!FindImage(root, 1).empty()) return {ReadHomographySequence(root)};
-  std::vector<std::string> dirs;
-  for (const auto& entry : fs::directory_iterator(root)) {
-    if (entry.is_directory() && !FindImage(entry.path(), 1).empty()) {
-      dirs.push_back(entry.path().string());
-    }
-  }
-  std::sort(dirs.begin(), dirs.end());
-  SLAM_THROW_IF_NOT(InputError, !dirs.empty())
-      << root << ": no sequence (folder with img1 and H1to2p) found";
-  std::vector<HomographySequence> sequences;
-  for (const std::string& d : dirs) sequences.push_back(ReadHomographySequence(d));
-  return sequences;
-}
-
 void FeatureEvalOptions::Check() const {
   SLAM_THROW_IF_NOT(ConfigError, !types.empty()) << "features eval: no feature type given";
   for (const std::string& t : types) {
@@ -134,11 +93,12 @@ void FeatureEvalOptions::Check() const {
   metrics.Check();
 }
 
-FeatureEvalResult EvaluateFeatures(const std::vector<HomographySequence>& sequences,
+FeatureEvalResult EvaluateFeatures(const std::vector<ImageSequence>& sequences,
                                    const FeatureEvalOptions& options) {
   options.Check();
   FeatureEvalResult result;
   result.options = options;
+  if (!sequences.empty()) result.layout = sequences.front().layout;
   for (const auto& seq : sequences) result.sequences.push_back(seq.name);
   for (const std::string& type : options.types) {
     result.types.push_back(EvaluateType(sequences, options, type));
@@ -148,6 +108,7 @@ FeatureEvalResult EvaluateFeatures(const std::vector<HomographySequence>& sequen
 
 nlohmann::json ToJson(const FeatureEvalResult& result) {
   nlohmann::json j;
+  j["layout"] = SequenceLayoutName(result.layout);
   j["sequences"] = result.sequences;
   j["thresholds_px"] = {{"repeatability", result.options.metrics.repeatability_px},
                         {"correct_match", result.options.metrics.correct_match_px},
@@ -167,7 +128,10 @@ nlohmann::json ToJson(const FeatureEvalResult& result) {
     for (const PairRecord& r : s.records) {
       const PairMetrics& m = r.metrics;
       t["pairs_detail"].push_back({{"sequence", r.sequence},
+                                   {"reference", r.reference_index},
                                    {"target", r.target_index},
+                                   {"reference_image", r.reference_image},
+                                   {"target_image", r.target_image},
                                    {"reference_keypoints", m.reference_keypoints},
                                    {"target_keypoints", m.target_keypoints},
                                    {"matches", m.matches},
@@ -196,6 +160,25 @@ std::string ToMarkdown(const FeatureEvalResult& result) {
         << s.mma[0] << " | " << s.mma[1] << " | " << s.mma[2] << " | " << s.homography_accuracy
         << " | " << std::setprecision(1) << s.extraction_ms << " | " << s.descriptor_bytes
         << " |\n";
+  }
+  out << "\nPer pair (reference-target, image indices as the sequence names them):\n\n"
+         "| type | sequence | pair | keypoints | matches | correct | repeatability@3px | matching score "
+         "| MMA@1 | MMA@3 | MMA@5 | corner error px | homography@3px |\n"
+         "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |\n";
+  for (const TypeSummary& s : result.types) {
+    for (const PairRecord& r : s.records) {
+      const PairMetrics& m = r.metrics;
+      out << "| " << s.type << " | " << r.sequence << " | " << r.reference_index << "-" << r.target_index
+          << " | " << m.reference_keypoints << " / " << m.target_keypoints << " | " << m.matches << " | "
+          << m.correct_matches << " | " << std::setprecision(3) << m.repeatability << " | "
+          << m.matching_score << " | " << m.mma[0] << " | " << m.mma[1] << " | " << m.mma[2] << " | ";
+      if (m.homography_estimated) {
+        out << std::setprecision(2) << m.corner_error_px;
+      } else {
+        out << "–";
+      }
+      out << " | " << (m.homography_correct ? "yes" : "no") << " |\n";
+    }
   }
   return out.str();
 }

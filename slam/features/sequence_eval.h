@@ -1,7 +1,7 @@
 // The real-image illumination benchmark behind `duskmap features eval`:
-// sequences in the Oxford/HPatches layout (img1 = reference, img2..imgN,
-// H1toNp homographies reference -> target), every pair evaluated per feature
-// type with homography_metrics.h, averaged per type.
+// image sequences (image_sequence.h: the Oxford/HPatches homography layout,
+// or a fixed camera's images with the identity), every selected pair
+// evaluated per feature type with homography_metrics.h, averaged per type.
 #pragma once
 
 #include <array>
@@ -13,27 +13,12 @@
 
 #include "slam/features/feature_options.h"
 #include "slam/features/homography_metrics.h"
+#include "slam/features/image_sequence.h"
 
 namespace duskmap {
 
-struct HomographySequence {
-  std::string name;
-  std::string reference_path;
-  std::vector<std::string> target_paths;
-  std::vector<cv::Matx33d> target_from_reference;  // H1toNp, one per target
-};
-
-// Reads one sequence folder (img1.{ppm,png,jpg} and every imgN with an
-// H1toNp); throws InputError when the reference or all targets are missing.
-HomographySequence ReadHomographySequence(const std::string& directory);
-
-// `root` itself when it is a sequence, else each sub-folder that is one
-// (sorted by name); throws InputError when none is found.
-std::vector<HomographySequence> FindHomographySequences(const std::string& root);
-
 struct FeatureEvalOptions {
-  std::vector<std::string> types = {"surf", "sift", "brief", "brisk", "kaze",
-                                    "daisy", "orb", "akaze", "freak"};
+  std::vector<std::string> types = BuiltInFeatureTypeNames();
   FeatureOptions features;  // shared options; `type` is replaced per entry of `types`
   HomographyMetricsOptions metrics;
   void Check() const;
@@ -41,7 +26,10 @@ struct FeatureEvalOptions {
 
 struct PairRecord {
   std::string sequence;
-  int target_index = 0;  // N of imgN
+  int reference_index = 0;  // the pair's first image (N of imgN)
+  int target_index = 0;     // its second
+  std::string reference_image;  // file names
+  std::string target_image;
   PairMetrics metrics;
 };
 
@@ -59,17 +47,21 @@ struct TypeSummary {
 };
 
 struct FeatureEvalResult {
+  SequenceLayout layout = SequenceLayout::kHomography;
   std::vector<std::string> sequences;
   FeatureEvalOptions options;
   std::vector<TypeSummary> types;
 };
 
-FeatureEvalResult EvaluateFeatures(const std::vector<HomographySequence>& sequences,
+// Each image of a sequence's pairs is read and extracted once per type. A
+// static pair whose images differ in size is an InputError naming both.
+FeatureEvalResult EvaluateFeatures(const std::vector<ImageSequence>& sequences,
                                    const FeatureEvalOptions& options);
 
 nlohmann::json ToJson(const FeatureEvalResult& result);
 // One row per type: keypoints/image, repeatability, matching score, MMA@1/3/5,
-// homography accuracy, ms/image, descriptor bytes.
+// homography accuracy, ms/image, descriptor bytes; then one row per type and
+// pair (keypoints, matches, the same scores, corner error).
 std::string ToMarkdown(const FeatureEvalResult& result);
 
 }  // namespace duskmap

@@ -5,11 +5,13 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <string>
 #include <vector>
@@ -18,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/features/onnx_test_models.h"
+#include "tests/features/static_scene.h"
 #include "tests/features/two_plane_pair.h"
 #include "tests/testing/temp_dir.h"
 #include "tests/testing/run_duskmap.h"
@@ -278,6 +281,149 @@ TEST_F(FeaturesCli, EvalScoresPairsByEpipolarGeometry) {
   const Result wrong = RunDuskmap("features eval --layout pairs --data " + dir_ + "/data --types orb");
   EXPECT_NE(wrong.exit_code, 0);
   EXPECT_NE(wrong.output.find("no pair folder"), std::string::npos) << wrong.output;
+}
+
+// The error is one line that starts "duskmap: error: " and holds each needle.
+void ExpectOneLineError(const Result& r, const std::vector<std::string>& needles) {
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_EQ(r.output.rfind("duskmap: error: ", 0), 0u) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  for (const std::string& needle : needles) {
+    EXPECT_NE(r.output.find(needle), std::string::npos) << "missing '" << needle << "' in " << r.output;
+  }
+}
+
+std::string ReadText(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// A fixed camera's images without H files: the static layout, detected and
+// said so, or forced; `SURF` is the surf type; the markdown has a row per
+// pair. A sequence with some H files but not all is an error naming the
+// missing one, never evaluated as static.
+TEST(FeaturesEvalCli, StaticLayoutDetectedOrForced) {
+  const std::string dir = duskmap::testing::ProcessTempDir("eval_static");
+  duskmap::testing::WriteStaticScene(dir + "/cams/webcam", 3);
+  const Result eval = RunDuskmap("features eval --data " + dir + "/cams --types SURF,orb --out " + dir + "/out");
+  ASSERT_EQ(eval.exit_code, 0) << eval.output;
+  EXPECT_NE(eval.output.find("1 sequence(s) in " + dir + "/cams, layout static (detected: no H1toNp file), 2 "
+                             "pair(s), 2 type(s)"),
+            std::string::npos)
+      << eval.output;
+  const auto json = nlohmann::json::parse(std::ifstream(dir + "/out/features_eval.json"));
+  EXPECT_EQ(json["layout"], "static");
+  EXPECT_EQ(json["types"][0]["type"], "surf");
+  EXPECT_EQ(json["types"][0]["homography_accuracy"], 1.0);
+  const std::string md = ReadText(dir + "/out/features_eval.md");
+  EXPECT_NE(md.find("Layout: static (detected: no H1toNp file)"), std::string::npos) << md;
+  for (const char* row : {"| surf | webcam | 1-2 |", "| surf | webcam | 1-3 |", "| orb | webcam | 1-3 |"}) {
+    EXPECT_NE(md.find(row), std::string::npos) << row << "\n" << md;
+  }
+
+  // Forced on a folder whose H files are wrong: they are not used.
+  for (const char* h : {"H1to2p", "H1to3p"}) std::ofstream(dir + "/cams/webcam/" + h) << "1 0 40\n0 1 0\n0 0 1\n";
+  const Result forced = RunDuskmap("features eval --layout static --data " + dir + "/cams/webcam --types orb");
+  ASSERT_EQ(forced.exit_code, 0) << forced.output;
+  EXPECT_NE(forced.output.find("layout static (--layout static; the H files of webcam are not used)"),
+            std::string::npos)
+      << forced.output;
+  EXPECT_NE(forced.output.find("| orb | webcam | 1-3 |"), std::string::npos) << forced.output;
+  const Result shifted = RunDuskmap("features eval --data " + dir + "/cams/webcam --types orb");
+  ASSERT_EQ(shifted.exit_code, 0) << shifted.output;
+  EXPECT_NE(shifted.output.find("layout homography (detected: H1toNp files)"), std::string::npos) << shifted.output;
+
+  // Some H files but not all: the missing one is named.
+  fs::remove(dir + "/cams/webcam/H1to3p");
+  ExpectOneLineError(RunDuskmap("features eval --data " + dir + "/cams --types orb"),
+                     {dir + "/cams/webcam/H1to3p: missing (img3.png has no homography"});
+  ExpectOneLineError(RunDuskmap("features eval --layout homography --data " + dir + "/cams --types orb"),
+                     {dir + "/cams/webcam/H1to3p: missing"});
+}
+
+// --pairs and --pairs-file select pairs by image index; a selected pair that
+// does not exist is named.
+TEST(FeaturesEvalCli, PairsSelectASubset) {
+  const std::string dir = duskmap::testing::ProcessTempDir("eval_pairs");
+  duskmap::testing::WriteStaticScene(dir + "/webcam", 4);
+  const Result eval = RunDuskmap("features eval --data " + dir + "/webcam --types orb --pairs 1-4,3-2 --out " +
+                                 dir + "/out");
+  ASSERT_EQ(eval.exit_code, 0) << eval.output;
+  EXPECT_NE(eval.output.find("2 pair(s)"), std::string::npos) << eval.output;
+  const auto json = nlohmann::json::parse(std::ifstream(dir + "/out/features_eval.json"));
+  const nlohmann::json& detail = json["types"][0]["pairs_detail"];
+  ASSERT_EQ(detail.size(), 2u);
+  EXPECT_EQ(detail[0]["reference"], 1);
+  EXPECT_EQ(detail[0]["target"], 4);
+  EXPECT_EQ(detail[1]["reference"], 3);
+  EXPECT_EQ(detail[1]["target"], 2);
+  const std::string md = ReadText(dir + "/out/features_eval.md");
+  EXPECT_NE(md.find("| orb | webcam | 3-2 |"), std::string::npos) << md;
+  EXPECT_EQ(md.find("| orb | webcam | 1-2 |"), std::string::npos) << md;
+
+  std::ofstream(dir + "/night.txt") << "# the darkest\n1-4\nwebcam/1-3  # dusk\n";
+  const Result listed = RunDuskmap("features eval --data " + dir + "/webcam --types orb --pairs-file " + dir +
+                                   "/night.txt");
+  ASSERT_EQ(listed.exit_code, 0) << listed.output;
+  EXPECT_NE(listed.output.find("| orb | webcam | 1-3 |"), std::string::npos) << listed.output;
+  EXPECT_EQ(listed.output.find("| orb | webcam | 1-2 |"), std::string::npos) << listed.output;
+
+  ExpectOneLineError(RunDuskmap("features eval --data " + dir + "/webcam --types orb --pairs 1-2,1-9"),
+                     {"--pairs: pair '1-9' does not exist in sequence webcam (no image 9; images 1, 2, 3, 4)"});
+  std::ofstream(dir + "/bad.txt") << "1-2\n\n5-1\n";
+  ExpectOneLineError(RunDuskmap("features eval --data " + dir + "/webcam --types orb --pairs-file " + dir +
+                                "/bad.txt"),
+                     {dir + "/bad.txt:3: pair '5-1' does not exist in sequence webcam"});
+  ExpectOneLineError(RunDuskmap("features eval --data " + dir + "/webcam --types orb --pairs-file " + dir +
+                                "/absent.txt"),
+                     {dir + "/absent.txt: cannot read the pair list"});
+}
+
+// Type names in any case; --help lists the types and the default.
+TEST(FeaturesEvalCli, TypesInAnyCaseAndListedInHelp) {
+  const Result help = RunDuskmap("features eval --help");
+  EXPECT_EQ(help.exit_code, 0) << help.output;
+  for (const char* needle : {"surf, sift, brief, brisk, kaze, daisy, orb, akaze, freak, superpoint, onnx, h5",
+                             "default: surf,sift,brief,brisk,kaze,daisy,orb,akaze,freak", "static",
+                             "--pairs-file"}) {
+    EXPECT_NE(help.output.find(needle), std::string::npos) << needle << "\n" << help.output;
+  }
+  const std::string dir = duskmap::testing::ProcessTempDir("eval_types");
+  duskmap::testing::WriteStaticScene(dir + "/webcam", 2);
+  const Result upper = RunDuskmap("features eval --data " + dir + "/webcam --types SURF,Brief");
+  ASSERT_EQ(upper.exit_code, 0) << upper.output;
+  EXPECT_NE(upper.output.find("| surf | webcam | 1-2 |"), std::string::npos) << upper.output;
+  EXPECT_NE(upper.output.find("| brief | webcam | 1-2 |"), std::string::npos) << upper.output;
+  ExpectOneLineError(RunDuskmap("features eval --data " + dir + "/webcam --types SURFACE"),
+                     {"--types: unknown feature type 'SURFACE' (known: surf, sift"});
+}
+
+// A WxBS-style pair folder missing an image: an error naming the file,
+// whether the root or the folder itself is given.
+TEST(FeaturesEvalCli, PairFolderMissingAnImageIsNamed) {
+  const std::string dir = duskmap::testing::ProcessTempDir("eval_missing_pair");
+  duskmap::testing::TwoPlanePair().Write(dir + "/pairs/day/street");
+  duskmap::testing::TwoPlanePair().Write(dir + "/pairs/night/street");
+  fs::remove(dir + "/pairs/night/street/02.png");
+  const std::string missing = dir + "/pairs/night/street/02.{png,jpg,jpeg,ppm,bmp}: missing";
+  ExpectOneLineError(RunDuskmap("features eval --data " + dir + "/pairs --types orb"), {missing});
+  ExpectOneLineError(RunDuskmap("features eval --data " + dir + "/pairs/night/street --types orb"), {missing});
+  const Result chosen = RunDuskmap("features eval --data " + dir + "/pairs/day --types orb --pairs day/street");
+  ExpectOneLineError(chosen, {"--pairs: pair 'day/street' does not exist (pairs: street)"});
+}
+
+// --out onto a file: one line naming it, and the file is untouched.
+TEST(FeaturesEvalCli, OutOntoAFileIsRefused) {
+  const std::string dir = duskmap::testing::ProcessTempDir("eval_out_file");
+  duskmap::testing::WriteStaticScene(dir + "/webcam", 2);
+  std::ofstream(dir + "/notes.txt") << "mine\n";
+  ExpectOneLineError(RunDuskmap("features eval --data " + dir + "/webcam --types orb --out " + dir + "/notes.txt"),
+                     {"--out " + dir + "/notes.txt: exists and is not a folder"});
+  EXPECT_EQ(ReadText(dir + "/notes.txt"), "mine\n");
+  ExpectOneLineError(
+      RunDuskmap("features eval --data " + dir + "/webcam --types orb --out " + dir + "/notes.txt/eval"),
+      {dir + "/notes.txt/eval"});
+  EXPECT_EQ(ReadText(dir + "/notes.txt"), "mine\n");
 }
 
 // The worked example of docs/features.md: an external extractor (OpenCV's

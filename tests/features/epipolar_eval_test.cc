@@ -67,6 +67,21 @@ TEST(EpipolarEval, TwoPlanePairIsSolvedAndAWrongGroundTruthIsNot) {
   }
   const std::string table = ToMarkdown(result);
   EXPECT_NE(table.find("| sift | 3 | 2 | 2 | 2 |"), std::string::npos) << table;
+  // One row per type and pair: the wrong truth's pair is solved at no threshold.
+  EXPECT_NE(table.find("| orb | scenes/planes | "), std::string::npos) << table;
+  const size_t wrong = table.find("| sift | scenes/planes_wrong_truth | ");
+  ASSERT_NE(wrong, std::string::npos) << table;
+  EXPECT_NE(table.substr(wrong, table.find('\n', wrong) - wrong).find("| no / no / no |"), std::string::npos)
+      << table;
+
+  // --pairs by name: those pairs only, in the selection's order; an unknown one is named.
+  const std::vector<CorrespondencePair> chosen =
+      SelectCorrespondencePairs(pairs, ParsePairList("top,scenes/planes"));
+  ASSERT_EQ(chosen.size(), 2u);
+  EXPECT_EQ(chosen[0].name, "top");
+  EXPECT_EQ(chosen[1].name, "scenes/planes");
+  EXPECT_EQ(ErrorOf([&] { SelectCorrespondencePairs(pairs, ParsePairList("top,kremlin")); }),
+            "--pairs: pair 'kremlin' does not exist (pairs: scenes/planes, scenes/planes_wrong_truth, top)");
   EXPECT_EQ(ToJson(result)["types"][0]["categories"]["scenes"]["solved"][2], 1);
 }
 
@@ -118,8 +133,39 @@ TEST(EpipolarEval, BadPairFoldersAreNamedInOneLine) {
             corrs + ":1: correspondence (10, 10) -> (700, 10) lies outside the images (640x480, 640x480)");
   fs::remove(corrs);
   EXPECT_EQ(ErrorOf([&] { FindCorrespondencePairs(pair.string()); }),
-            corrs + ": missing (the pair's correspondences)");
+            corrs + ": missing (the pair's correspondences; a fixed camera's images named 01, 02: --layout static)");
   EXPECT_TRUE(FindCorrespondencePairs((root / "nothing_here").string()).empty());
+}
+
+// A pair folder missing an image is an error naming the file, never skipped:
+// pointed at directly, or found under the root or in a category folder.
+TEST(EpipolarEval, APairFolderMissingAnImageIsNamed) {
+  const fs::path root = ProcessTempDir("epipolar_missing");
+  testing::TwoPlanePair().Write(root / "complete");
+  testing::TwoPlanePair().Write(root / "night" / "halfway");
+  fs::remove(root / "night" / "halfway" / "02.png");
+  const std::string missing =
+      (root / "night" / "halfway" / "02").string() +
+      ".{png,jpg,jpeg,ppm,bmp}: missing (a pair folder holds 01.*, 02.* and corrs.txt)";
+  EXPECT_EQ(ErrorOf([&] { FindCorrespondencePairs((root / "night" / "halfway").string()); }), missing);
+  EXPECT_EQ(ErrorOf([&] { FindCorrespondencePairs(root.string()); }), missing);
+  fs::rename(root / "night" / "halfway", root / "halfway");
+  EXPECT_EQ(ErrorOf([&] { FindCorrespondencePairs(root.string()); }),
+            (root / "halfway" / "02").string() +
+                ".{png,jpg,jpeg,ppm,bmp}: missing (a pair folder holds 01.*, 02.* and corrs.txt)");
+  fs::remove(root / "halfway" / "01.png");  // corrs.txt alone makes it a pair folder
+  EXPECT_EQ(ErrorOf([&] { FindCorrespondencePairs(root.string()); }),
+            (root / "halfway" / "01").string() +
+                ".{png,jpg,jpeg,ppm,bmp}: missing (a pair folder holds 01.*, 02.* and corrs.txt)");
+  // A fixed camera's images named 01, 02, 03 are not a pair folder.
+  fs::remove_all(root / "halfway");
+  const fs::path webcam = root / "webcam";
+  fs::create_directories(webcam);
+  for (const char* name : {"01.png", "02.png", "03.png"}) {
+    cv::imwrite((webcam / name).string(), cv::Mat(8, 8, CV_8UC1, cv::Scalar(3)));
+  }
+  EXPECT_FALSE(IsCorrespondencePairFolder(webcam.string()));
+  EXPECT_EQ(FindCorrespondencePairs(root.string()).size(), 1u);
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "slam/features/feature_options.h"
 
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include "slam/features/feature_options_json.h"
@@ -26,6 +28,30 @@ TEST(FeatureOptionsTest, DefaultsAreThePapersSettings) {
   EXPECT_EQ(FeatureTypeNames().size(), 12u);
   EXPECT_EQ(o.h5.descriptor_kind, "float");
   EXPECT_EQ(o.h5.keypoint_origin, "pixel_centre");
+}
+
+// Command lines take a type in any case; the built-in types (no file
+// needed) are the list's first nine, the default of features eval.
+TEST(FeatureOptionsTest, TypeNamesInAnyCase) {
+  EXPECT_EQ(FeatureTypeFromName("SURF", "--types"), "surf");
+  EXPECT_EQ(FeatureTypeFromName("Sift", "--types"), "sift");
+  EXPECT_EQ(FeatureTypeFromName("h5", "--types"), "h5");
+  try {
+    FeatureTypeFromName("SURFACE", "features eval: --types");
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "features eval: --types: unknown feature type 'SURFACE' (known: surf, sift, brief, brisk, kaze, "
+              "daisy, orb, akaze, freak, superpoint, onnx, h5)");
+  }
+  const std::vector<std::string>& built_in = BuiltInFeatureTypeNames();
+  ASSERT_EQ(built_in.size(), 9u);
+  EXPECT_TRUE(std::equal(built_in.begin(), built_in.end(), FeatureTypeNames().begin()));
+  for (const std::string& type : built_in) {
+    FeatureOptions o;
+    o.type = type;
+    EXPECT_NO_THROW(o.Check()) << type;  // needs no model or file
+  }
 }
 
 TEST(FeatureOptionsTest, ReadsJsonAndRejectsUnknownKeys) {
