@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "slam/core/check.h"
+#include "slam/core/json_reader.h"  // ReadJsonFile, ParseJsonText: where the objects come from
 
 namespace duskmap {
 
@@ -111,12 +112,5 @@ class JsonFields {
   std::string where_;
   std::set<std::string> used_;
 };
-
-// Parses a JSON file; throws ConfigError("<path>: <problem>") when it cannot:
-// unreadable, invalid JSON (with the line and column), or a key given twice
-// in one object (named with its object's path).
-nlohmann::json ReadJsonFile(const std::string& path);
-// The same for JSON text; `where` names it in errors.
-nlohmann::json ParseJsonText(const std::string& text, const std::string& where);
 
 }  // namespace duskmap

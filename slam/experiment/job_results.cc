@@ -2,6 +2,7 @@
 
 #include <fstream>
 #include <string>
+#include <system_error>
 #include <type_traits>
 #include <utility>
 
@@ -135,12 +136,15 @@ void WriteSummary(const std::filesystem::path& job_dir, const nlohmann::json& su
 
 nlohmann::json ReadSummary(const std::filesystem::path& job_dir) {
   const std::filesystem::path path = job_dir / "summary.json";
-  std::ifstream in(path);
-  SLAM_THROW_IF_NOT(InputError, in.good()) << path.string() << ": missing job summary";
-  nlohmann::json json = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
-  SLAM_THROW_IF_NOT(InputError, !json.is_discarded())
-      << path.string() << ": malformed job summary (not valid JSON)";
-  return json;
+  std::error_code error;
+  SLAM_THROW_IF_NOT(InputError, std::filesystem::exists(path, error))
+      << path.string() << ": missing job summary";
+  try {
+    return ReadJsonFile(path.string());
+  } catch (const ConfigError& e) {
+    SLAM_THROW(InputError) << e.what() << " (malformed job summary)";
+  }
+  return nlohmann::json();  // not reached
 }
 
 LocalizationJobSummary ReadLocalizationJobSummary(const std::filesystem::path& job_dir) {

@@ -7,6 +7,7 @@
 
 #include "slam/core/check.h"
 #include "slam/core/checksum.h"
+#include "slam/core/json_reader.h"
 #include "slam/io/output_safety.h"
 
 namespace duskmap {
@@ -79,7 +80,7 @@ RunManifest ReadRunManifest(const fs::path& results_dir) {
       << path.string() << ": missing (not the results folder of `duskmap run`)";
   RunManifest m;
   try {
-    const nlohmann::json json = nlohmann::json::parse(in);
+    const nlohmann::json json = ReadJsonFile(path.string());
     json.at("config").get_to(m.config_path);
     json.at("dataset").get_to(m.dataset_path);
     json.at("features").get_to(m.features);
@@ -98,6 +99,8 @@ RunManifest ReadRunManifest(const fs::path& results_dir) {
     }
   } catch (const nlohmann::json::exception& e) {
     SLAM_THROW(InputError) << path.string() << ": malformed run manifest (" << e.what() << ")";
+  } catch (const ConfigError& e) {  // not JSON, or nested too deep
+    SLAM_THROW(InputError) << e.what() << " (malformed run manifest)";
   }
   return m;
 }

@@ -7,6 +7,7 @@
 
 #include "slam/core/check.h"
 #include "slam/core/checksum.h"
+#include "slam/core/json_reader.h"
 #include "slam/features/feature_options_json.h"
 #include "slam/experiment/feature_cache.h"
 
@@ -102,11 +103,12 @@ std::optional<nlohmann::json> SharedFeatureCache::Restore(const std::string& key
   nlohmann::json summary;
   bool usable = false;
   try {
-    std::ifstream in(entry / kSummaryFile);
-    summary = nlohmann::json::parse(in);
+    summary = ReadJsonFile((entry / kSummaryFile).string());
     const std::optional<int64_t> frames = FramesIn(entry / kEntryFile);
     usable = frames && summary.at("frames").get<int64_t>() == *frames;
   } catch (const nlohmann::json::exception&) {
+    usable = false;
+  } catch (const Error&) {  // missing, not JSON, or nested too deep
     usable = false;
   }
   if (!usable) {  // damaged or half-copied by hand: extract again

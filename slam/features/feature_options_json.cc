@@ -10,8 +10,8 @@ FeatureOptions FeatureOptionsOfMap(const std::string& feature_parameters_json,
   const std::string where = map_path + ": feature_parameters";
   nlohmann::json json;
   try {
-    json = nlohmann::json::parse(feature_parameters_json);
-  } catch (const nlohmann::json::exception&) {
+    json = ParseJsonText(feature_parameters_json, where);
+  } catch (const ConfigError&) {  // duskmap wrote it: any problem is damage
     SLAM_THROW(ConfigError) << where << ": not JSON (the map is damaged; rebuild it)";
   }
   SLAM_THROW_IF_NOT(ConfigError, json.is_object()) << where << ": not a JSON object (rebuild the map)";

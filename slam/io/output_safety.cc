@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "slam/core/check.h"
+#include "slam/core/json_reader.h"
 #include "slam/io/synthetic_dataset.h"
 
 namespace duskmap {
@@ -81,10 +82,13 @@ bool IsDuskmapDatasetFolder(const fs::path& path) {
   if (!fs::is_directory(path, error)) return false;
   // Only the format field: a damaged manifest of a generated dataset is
   // still the generator's to replace.
-  std::ifstream in(path / kManifestFileName);
-  if (!in.good()) return false;
-  const nlohmann::json json = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
-  return json.is_object() && json.value("format", std::string()) == "duskmap-synthetic";
+  nlohmann::json json;
+  try {
+    json = ReadJsonFile((path / kManifestFileName).string());
+  } catch (const Error&) {  // missing, not JSON, or nested too deep
+    return false;
+  }
+  return json.is_object() && json.contains("format") && json.at("format") == "duskmap-synthetic";
 }
 
 bool IsDuskmapResultsFolder(const fs::path& path) {
