@@ -1,8 +1,11 @@
 #include "slam/experiment/regression_check.h"
 
+#include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 
 #include "slam/core/check.h"
 
@@ -25,37 +28,67 @@ std::vector<std::string> SplitCsv(const std::string& line) {
   return fields;
 }
 
-double ToDouble(const std::string& text, const std::string& where) {
+// The number in one field; throws InputError "<where>: <column>: ..." for
+// text that is not a number, one beyond double's range ("1e400"), NaN and
+// infinity (std::stod reads "nan" and "inf" without complaint).
+double ToDouble(const std::string& text, const std::string& where, const char* column) {
   size_t used = 0;
   double value = 0.0;
+  bool in_range = true;
   try {
     value = std::stod(text, &used);
+  } catch (const std::out_of_range&) {
+    in_range = false;
   } catch (const std::exception&) {
     used = 0;
   }
+  SLAM_THROW_IF_NOT(InputError, in_range) << where << ": " << column << ": '" << text
+                                          << "' is out of range";
   SLAM_THROW_IF_NOT(InputError, used == text.size() && !text.empty())
-      << where << ": '" << text << "' is not a number";
+      << where << ": " << column << ": '" << text << "' is not a number";
+  SLAM_THROW_IF_NOT(InputError, std::isfinite(value))
+      << where << ": " << column << ": '" << text << "' is not a finite number";
   return value;
+}
+
+// A percentage in [0, 100].
+double ToPercent(const std::string& text, const std::string& where, const char* column) {
+  const double value = ToDouble(text, where, column);
+  SLAM_THROW_IF_NOT(InputError, value >= 0.0 && value <= 100.0)
+      << where << ": " << column << ": " << text << " is outside [0, 100]";
+  return value;
+}
+
+// A count in [min, max].
+int ToCount(const std::string& text, const std::string& where, const char* column, int min,
+            int max) {
+  const double value = ToDouble(text, where, column);
+  SLAM_THROW_IF_NOT(InputError, value == std::floor(value) && value >= min && value <= max)
+      << where << ": " << column << ": " << text << " is not a whole number in [" << min << ", "
+      << max << "]";
+  return static_cast<int>(value);
 }
 
 }  // namespace
 
-std::vector<CellRates> ReadCellRates(const std::string& path) {
-  std::ifstream in(path);
-  SLAM_THROW_IF_NOT(InputError, in.good()) << path << ": cannot open";
+std::vector<CellRates> ParseCellRates(std::istream& in, const std::string& path) {
   std::string line;
   SLAM_THROW_IF_NOT(InputError, static_cast<bool>(std::getline(in, line))) << path << ": empty file";
   const std::vector<std::string> header = SplitCsv(line);
   std::map<std::string, size_t> column;
-  for (size_t i = 0; i < header.size(); ++i) column[header[i]] = i;
+  for (size_t i = 0; i < header.size(); ++i) {
+    SLAM_THROW_IF_NOT(InputError, column.emplace(header[i], i).second)
+        << path << ":1: column '" << header[i] << "' is given twice";
+  }
   for (const char* name : {"feature", "row", "session", "frames", "relocalized_pct", "correct_pct",
                            "wrong"}) {
     SLAM_THROW_IF_NOT(InputError, column.count(name))
         << path << ": not a report's cells.csv (no column '" << name << "')";
   }
   std::vector<CellRates> cells;
+  std::map<std::string, int> line_of_cell;
   for (int number = 2; std::getline(in, line); ++number) {
-    if (line.empty()) continue;
+    if (line.empty() || line == "\r") continue;
     const std::string where = path + ":" + std::to_string(number);
     const std::vector<std::string> f = SplitCsv(line);
     SLAM_THROW_IF_NOT(InputError, f.size() == header.size())
@@ -64,13 +97,29 @@ std::vector<CellRates> ReadCellRates(const std::string& path) {
     cell.feature = f[column["feature"]];
     cell.row = f[column["row"]];
     cell.session = f[column["session"]];
-    cell.frames = static_cast<int>(ToDouble(f[column["frames"]], where));
-    cell.relocalized_pct = ToDouble(f[column["relocalized_pct"]], where);
-    cell.correct_pct = ToDouble(f[column["correct_pct"]], where);
-    cell.wrong = static_cast<int>(ToDouble(f[column["wrong"]], where));
+    // The report writes cells of at least one frame.
+    cell.frames = ToCount(f[column["frames"]], where, "frames", 1,
+                          std::numeric_limits<int>::max());
+    cell.relocalized_pct = ToPercent(f[column["relocalized_pct"]], where, "relocalized_pct");
+    // -1: the session has no ground truth.
+    const std::string& correct = f[column["correct_pct"]];
+    cell.correct_pct = ToDouble(correct, where, "correct_pct") == -1.0
+                           ? -1.0
+                           : ToPercent(correct, where, "correct_pct");
+    cell.wrong = ToCount(f[column["wrong"]], where, "wrong", 0, cell.frames);
+    const auto [first, added] = line_of_cell.emplace(cell.Key(), number);
+    SLAM_THROW_IF_NOT(InputError, added) << where << ": cell '" << cell.Key()
+                                         << "' is listed twice (first on line " << first->second
+                                         << ")";
     cells.push_back(cell);
   }
   return cells;
+}
+
+std::vector<CellRates> ReadCellRates(const std::string& path) {
+  std::ifstream in(path);
+  SLAM_THROW_IF_NOT(InputError, in.good()) << path << ": cannot open";
+  return ParseCellRates(in, path);
 }
 
 void RegressionOptions::Check() const {

@@ -5,6 +5,7 @@
 // it is regenerated deliberately (scripts/update_quick_baseline.sh).
 #pragma once
 
+#include <istream>
 #include <string>
 #include <vector>
 
@@ -23,8 +24,15 @@ struct CellRates {
   std::string Key() const { return feature + " " + row + " " + session; }
 };
 
-// Reads a report's cells.csv; throws InputError naming the file and line.
+// Reads a report's cells.csv; throws InputError "<path>:<line>: <column>:
+// <problem>" for a value that is not a number, NaN or infinite, a rate outside
+// [0, 100] (correct_pct: or -1, no ground truth), frames that are not a whole
+// number >= 1, wrong re-localizations that are not a whole number in [0,
+// frames], and a cell (feature, row, session) listed twice: the check is a CI
+// gate, and a broken run's file must not pass it.
 std::vector<CellRates> ReadCellRates(const std::string& path);
+// The same for text already open; `path` names it in errors.
+std::vector<CellRates> ParseCellRates(std::istream& in, const std::string& path);
 
 struct RegressionOptions {
   // Largest allowed drop of a rate, percentage points of the cell's frames.

@@ -2,11 +2,13 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include "slam/core/check.h"
+#include "tests/testing/error_of.h"
 #include "tests/testing/temp_dir.h"
 
 namespace duskmap {
@@ -86,7 +88,8 @@ TEST(RegressionCheck, ReadsTheReportsCellsCsv) {
     ReadCellRates(path.string());
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find(path.string() + ":2: 'seventy' is not a number"),
+    EXPECT_NE(std::string(e.what()).find(path.string() +
+                                         ":2: relocalized_pct: 'seventy' is not a number"),
               std::string::npos)
         << e.what();
   }
@@ -94,6 +97,51 @@ TEST(RegressionCheck, ReadsTheReportsCellsCsv) {
   EXPECT_THROW(ReadCellRates(path.string()), InputError);
   fs::remove(path);
   EXPECT_THROW(ReadCellRates(path.string()), InputError);
+}
+
+// check-rates is a CI gate: a file a broken run wrote must not pass it. NaN,
+// infinity and 150 % were read as rates (inf and 150 counted as
+// improvements), and a cell listed twice was accepted.
+TEST(RegressionCheck, RefusesRatesThatNoReportWrites) {
+  const std::string path = testing::ProcessTempPath("bad_cells.csv");
+  const std::string header = "feature,row,session,job,frames,relocalized_pct,correct_pct,wrong\n";
+  const auto error = [&](const std::string& rows) {
+    std::ofstream(path) << header << rows;
+    return testing::ErrorOf([&] { ReadCellRates(path); });
+  };
+  EXPECT_EQ(error("SI,1,A,j,40,nan,70,1\n"), path + ":2: relocalized_pct: 'nan' is not a finite number");
+  EXPECT_EQ(error("SI,1,A,j,40,NaN,70,1\n"), path + ":2: relocalized_pct: 'NaN' is not a finite number");
+  EXPECT_EQ(error("SI,1,A,j,40,50,inf,1\n"), path + ":2: correct_pct: 'inf' is not a finite number");
+  EXPECT_EQ(error("SI,1,A,j,40,-infinity,70,1\n"),
+            path + ":2: relocalized_pct: '-infinity' is not a finite number");
+  EXPECT_EQ(error("SI,1,A,j,40,1e400,70,1\n"), path + ":2: relocalized_pct: '1e400' is out of range");
+  EXPECT_EQ(error("SI,1,A,j,40,150,70,1\n"), path + ":2: relocalized_pct: 150 is outside [0, 100]");
+  EXPECT_EQ(error("SI,1,A,j,40,50,-0.5,1\n"), path + ":2: correct_pct: -0.5 is outside [0, 100]");
+  EXPECT_EQ(error("SI,1,A,j,40,-3,70,1\n"), path + ":2: relocalized_pct: -3 is outside [0, 100]");
+  EXPECT_EQ(error("SI,1,A,j,0,50,70,0\n"),
+            path + ":2: frames: 0 is not a whole number in [1, 2147483647]");
+  EXPECT_EQ(error("SI,1,A,j,40.5,50,70,0\n"),
+            path + ":2: frames: 40.5 is not a whole number in [1, 2147483647]");
+  EXPECT_EQ(error("SI,1,A,j,40,50,70,41\n"), path + ":2: wrong: 41 is not a whole number in [0, 40]");
+  EXPECT_EQ(error("SI,1,A,j,40,50,70,nan\n"), path + ":2: wrong: 'nan' is not a finite number");
+  // The same cell twice, even with the same values: which one would count?
+  EXPECT_EQ(error("SI,\"1\",A,j,40,50,70,1\nOR,\"1\",A,j,40,50,70,1\n\nSI,\"1\",A,j,40,50,70,1\n"),
+            path + ":5: cell 'SI 1 A' is listed twice (first on line 2)");
+  std::ofstream(path) << "feature,row,session,frames,frames,relocalized_pct,correct_pct,wrong\n";
+  EXPECT_EQ(testing::ErrorOf([&] { ReadCellRates(path); }),
+            path + ":1: column 'frames' is given twice");
+  // The report's own values pass: -1 without ground truth, 0 and 100.
+  EXPECT_EQ(error("SI,1,A,j,40,0,-1,0\nSI,2,A,j,40,100,100,0\n"), "");
+}
+
+TEST(RegressionCheck, ParsesTextAlreadyOpen) {
+  std::istringstream in("feature,row,session,frames,relocalized_pct,correct_pct,wrong\r\n"
+                        "SI,1,A,10,50,40,1\r\n");
+  const std::vector<CellRates> cells = ParseCellRates(in, "text");
+  ASSERT_EQ(cells.size(), 1u);
+  EXPECT_EQ(cells[0].wrong, 1);
+  std::istringstream empty("");
+  EXPECT_EQ(testing::ErrorOf([&] { ParseCellRates(empty, "text"); }), "text: empty file");
 }
 
 }  // namespace
