@@ -25,9 +25,13 @@ models are only good for testing the decoding and the contract checks.
   --topk       passes the sparse model's scores through TopK (as exports that
                select their keypoints inside the graph do): OpenCV 4.6 cannot
                import it.
+  --poison-scores nan|inf, --poison-descriptors nan|inf
+               adds NaN or +infinity to every value of the dense model's score
+               or descriptor map (a broken export: duskmap must refuse it).
 
 Usage: make_test_onnx_features.py OUT.onnx --contract dense|sparse [--rgb]
        [--dims D] [--seed N] [--malformed] [--topk]
+       [--poison-scores nan|inf] [--poison-descriptors nan|inf]
 Needs Debian's python3-onnx and python3-numpy.
 """
 import argparse
@@ -72,17 +76,29 @@ class Graph:
         return self.op("Sigmoid", [response], output)
 
 
-def dense(g, x, channels, dims, malformed, topk=False):
+def poisoned(g, value, poison, output):
+    """`value` + NaN or +inf under the name `output`; `value` itself without poison."""
+    if not poison:
+        return g.op("Identity", [value], output)
+    return g.op("Add", [value, g.const(np.nan if poison == "nan" else np.inf)], output)
+
+
+def dense(g, x, channels, dims, malformed, topk=False, poison_scores=None, poison_descriptors=None):
     if malformed:
         g.op("Concat", [g.score(x, channels), g.score(x, channels)], "score_map", axis=1)
+    elif poison_scores:
+        poisoned(g, g.score(x, channels), poison_scores, "score_map")
     else:
         g.score(x, channels, "score_map")
     score_channels = 2 if malformed else 1
-    g.conv(x, channels, dims, 3, "descriptor_map")
+    if poison_descriptors:
+        poisoned(g, g.conv(x, channels, dims, 3), poison_descriptors, "descriptor_map")
+    else:
+        g.conv(x, channels, dims, 3, "descriptor_map")
     return [("score_map", [1, score_channels, "H", "W"]), ("descriptor_map", [1, dims, "H", "W"])]
 
 
-def sparse(g, x, channels, dims, malformed, topk=False):
+def sparse(g, x, channels, dims, malformed, topk=False, poison_scores=None, poison_descriptors=None):
     gray = g.conv(x, channels, 1, 1) if channels != 1 else x
     response = g.score(gray, 1)
     ones = g.op("Add", [g.op("Mul", [gray, g.const(0.0)]), g.const(1.0)])
@@ -120,10 +136,11 @@ def sparse(g, x, channels, dims, malformed, topk=False):
             ("scores", [1, "N"])]
 
 
-def build(contract, rgb, dims, seed, malformed, topk=False):
+def build(contract, rgb, dims, seed, malformed, topk=False, poison_scores=None, poison_descriptors=None):
     g = Graph(seed)
     channels = 3 if rgb else 1
-    outputs = (dense if contract == "dense" else sparse)(g, "image", channels, dims, malformed, topk)
+    outputs = (dense if contract == "dense" else sparse)(g, "image", channels, dims, malformed, topk,
+                                                         poison_scores, poison_descriptors)
     graph = helper.make_graph(
         g.nodes, f"{contract}_features_random",
         [helper.make_tensor_value_info("image", TensorProto.FLOAT, [1, channels, "H", "W"])],
@@ -144,8 +161,13 @@ def main():
     parser.add_argument("--seed", type=int, default=20240611)
     parser.add_argument("--malformed", action="store_true")
     parser.add_argument("--topk", action="store_true")
+    parser.add_argument("--poison-scores", choices=["nan", "inf"])
+    parser.add_argument("--poison-descriptors", choices=["nan", "inf"])
     args = parser.parse_args()
-    onnx.save(build(args.contract, args.rgb, args.dims, args.seed, args.malformed, args.topk), args.out)
+    if (args.poison_scores or args.poison_descriptors) and args.contract != "dense":
+        parser.error("--poison-scores and --poison-descriptors are for the dense contract")
+    onnx.save(build(args.contract, args.rgb, args.dims, args.seed, args.malformed, args.topk,
+                    args.poison_scores, args.poison_descriptors), args.out)
 
 
 if __name__ == "__main__":

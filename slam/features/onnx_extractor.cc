@@ -203,6 +203,14 @@ void OnnxFeatureExtractor::PickDenseOutputs(const Outputs& outputs, int padded_r
                                     ? "no descriptor output of that shape"
                                     : "no output named " + o.descriptors_output));
   }
+  // Checked here, where the model is known: a NaN or infinite score map gave 0
+  // features (NaN) or every pixel as one (+inf), and a NaN descriptor map
+  // failed later without naming the model.
+  for (const int index : {score_index, desc_index}) {
+    SLAM_THROW_IF_NOT(InputError, cv::checkRange(outputs.blobs[index]))
+        << o.model_path << ": the model's " << (index == score_index ? "score" : "descriptor")
+        << " output " << outputs.names[index] << " holds NaN or infinite values";
+  }
   *scores = outputs.blobs[score_index];
   *descriptors = outputs.blobs[desc_index];
 }

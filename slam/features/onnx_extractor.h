@@ -44,7 +44,8 @@ class OnnxFeatureExtractor : public FeatureExtractor {
   cv::Mat InputBlob(const cv::Mat& image) const;
   Outputs Forward(const cv::Mat& blob) const;
   // Dense contract: the score and descriptor blobs of a padded_rows x
-  // padded_cols input (by name, or found by shape); InputError otherwise.
+  // padded_cols input (by name, or found by shape); InputError otherwise, or
+  // when either holds NaN or infinity.
   void PickDenseOutputs(const Outputs& outputs, int padded_rows, int padded_cols, cv::Mat* scores,
                         cv::Mat* descriptors) const;
   void DecodeDense(const Outputs& outputs, int rows, int cols, int padded_rows, int padded_cols,

@@ -266,6 +266,42 @@ TEST(OnnxExtractorTest, OutputsThatBreakTheContractAreNamed) {
   EXPECT_NE(error(as_sparse).find("no output named keypoints"), std::string::npos) << error(as_sparse);
 }
 
+// A NaN score map gave 0 features and a +inf one every pixel as a feature
+// (1000 meaningless ones), both silently; a NaN descriptor map failed later
+// without naming the model. The sparse contract refused the same already.
+TEST(OnnxExtractorTest, NanOrInfiniteDenseMapsAreRefusedNamingTheModelAndTheOutput) {
+  const std::string nan_scores =
+      MakeOnnxFeatureModel("onnx_dense_nan_scores.onnx", "--contract dense --poison-scores nan");
+  const std::string inf_scores =
+      MakeOnnxFeatureModel("onnx_dense_inf_scores.onnx", "--contract dense --poison-scores inf");
+  const std::string nan_descriptors = MakeOnnxFeatureModel(
+      "onnx_dense_nan_descriptors.onnx", "--contract dense --poison-descriptors nan");
+  const std::string inf_descriptors = MakeOnnxFeatureModel(
+      "onnx_dense_inf_descriptors.onnx", "--contract dense --poison-descriptors inf");
+  if (nan_scores.empty() || inf_scores.empty() || nan_descriptors.empty() ||
+      inf_descriptors.empty()) {
+    GTEST_SKIP() << "python3-onnx unavailable: cannot write the test models";
+  }
+  const auto error = [](const OnnxFeatureOptions& o) {
+    return ErrorOf([&] { OnnxFeatureExtractor(o, 1000, 0.0); });
+  };
+  EXPECT_EQ(error(DenseMapContract(nan_scores)),
+            nan_scores + ": the model's score output score_map holds NaN or infinite values");
+  EXPECT_EQ(error(DenseMapContract(inf_scores)),
+            inf_scores + ": the model's score output score_map holds NaN or infinite values");
+  // Also through a sigmoid, which would have turned +inf into 1 everywhere.
+  OnnxFeatureOptions sigmoid = DenseMapContract(inf_scores);
+  sigmoid.score_activation = "sigmoid";
+  EXPECT_EQ(error(sigmoid),
+            inf_scores + ": the model's score output score_map holds NaN or infinite values");
+  EXPECT_EQ(error(DenseMapContract(nan_descriptors)),
+            nan_descriptors +
+                ": the model's descriptor output descriptor_map holds NaN or infinite values");
+  EXPECT_EQ(error(DenseMapContract(inf_descriptors)),
+            inf_descriptors +
+                ": the model's descriptor output descriptor_map holds NaN or infinite values");
+}
+
 TEST(OnnxExtractorTest, MissingUnreadableAndUnimportableModels) {
   OnnxFeatureOptions o;
   EXPECT_NE(ErrorOf([&] { OnnxFeatureExtractor(o, 100, 0.0); })
