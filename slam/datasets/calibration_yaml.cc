@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "slam/core/check.h"
+#include "slam/core/input_file.h"
 
 namespace duskmap {
 namespace {
@@ -185,6 +186,7 @@ CameraCalibration ParseCalibrationYaml(const std::string& text, const std::strin
 }
 
 CameraCalibration ReadCalibrationYaml(const std::string& path) {
+  RefuseNonRegularFile(path);  // before opening: a FIFO would block
   std::ifstream in(path, std::ios::binary);
   SLAM_THROW_IF_NOT(InputError, in.good()) << path << ": cannot open calibration file";
   std::ostringstream contents;

@@ -81,6 +81,10 @@ void FrameAssembler::Assemble(const cv::Mat& bgr, const cv::Mat& depth_m,
                               const CameraCalibration& calibration, const std::string& where,
                               RgbdFrame* frame) {
   SLAM_CHECK(bgr.type() == CV_8UC3);
+  if (first_size_.empty()) first_size_ = bgr.size();
+  SLAM_THROW_IF_NOT(InputError, bgr.size() == first_size_)
+      << where << ": image is " << bgr.cols << "x" << bgr.rows << ", but the session's first is "
+      << first_size_.width << "x" << first_size_.height << " (a session's images share one size)";
   frame->camera = CameraForImage(calibration, bgr.cols, bgr.rows, where);
   frame->body_from_camera = calibration.body_from_camera;
   cv::Mat depth = RegisterDepth(depth_m, bgr.size(), where);

@@ -7,6 +7,8 @@
 //  - a distorted (or rectified) camera is undistorted: colour bilinearly, depth
 //    with nearest-neighbour, to the pinhole intrinsics of K (or P when present).
 // The undistortion maps are cached for the last calibration and image size.
+// One assembler serves one session: every image must have the size of its
+// first (a 1x1 frame in a 320x240 session was scaled to intrinsics of its own).
 #pragma once
 
 #include <string>
@@ -30,6 +32,7 @@ class FrameAssembler {
 
   cv::Mat map_x_, map_y_;
   std::string maps_key_;
+  cv::Size first_size_;  // of the session's first image; empty before it
 };
 
 }  // namespace duskmap

@@ -1,5 +1,6 @@
 #include "slam/datasets/image_blob.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <optional>
@@ -16,8 +17,6 @@ namespace duskmap {
 namespace {
 
 constexpr uint8_t kPngMagic[8] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
-// Encoders may pad a JPEG after its end-of-image marker; look this far back.
-constexpr size_t kJpegTrailerSearchBytes = 64;
 
 const char* CodecName(BlobCodec codec) {
   switch (codec) {
@@ -30,20 +29,14 @@ const char* CodecName(BlobCodec codec) {
 }
 
 // Checks that the blob is complete before handing it to the decoder (which
-// would otherwise print warnings and return a partially grey image).
+// would otherwise print warnings and return a partially grey image); the
+// same test as the image files' (slam/io/image_header.h).
 void CheckComplete(const uint8_t* data, size_t size, BlobCodec codec, const std::string& where) {
-  if (codec == BlobCodec::kJpeg) {
-    bool has_end = false;
-    for (size_t i = size < kJpegTrailerSearchBytes ? 0 : size - kJpegTrailerSearchBytes;
-         i + 1 < size; ++i) {
-      if (data[i] == 0xFF && data[i + 1] == 0xD9) has_end = true;
-    }
-    SLAM_THROW_IF_NOT(InputError, size > 4 && has_end)
-        << where << ": JPEG is truncated (no end-of-image marker)";
-  } else if (codec == BlobCodec::kPng) {
-    SLAM_THROW_IF_NOT(InputError, size >= 8 + 12 && std::memcmp(data + size - 8, "IEND", 4) == 0)
-        << where << ": PNG is truncated (no IEND chunk)";
-  }
+  const size_t tail = std::min(size, kImageTrailerSearchBytes);
+  const std::string problem = ImageTruncation(codec == BlobCodec::kJpeg, codec == BlobCodec::kPng,
+                                              data + size - tail, tail);
+  SLAM_THROW_IF_NOT(InputError, problem.empty() && (codec != BlobCodec::kJpeg || size > 4))
+      << where << ": " << (problem.empty() ? "JPEG is truncated (no end-of-image marker)" : problem);
 }
 
 // Images larger than kMaxImagePixels (slam/io/image_header.h, shared with the

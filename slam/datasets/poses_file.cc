@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "slam/core/check.h"
+#include "slam/core/input_file.h"
 
 namespace duskmap {
 namespace {
@@ -84,6 +85,7 @@ PosesFile ParsePosesText(const std::string& text) {
 }
 
 PosesFile ReadPosesFile(const std::string& path) {
+  RefuseNonRegularFile(path);  // before opening: a FIFO would block
   std::ifstream in(path, std::ios::binary);
   SLAM_THROW_IF_NOT(InputError, in.good()) << path << ": cannot open pose file";
   std::ostringstream contents;

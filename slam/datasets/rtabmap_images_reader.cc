@@ -9,6 +9,7 @@
 #include <opencv2/core.hpp>
 
 #include "slam/core/check.h"
+#include "slam/core/input_file.h"
 #include "slam/datasets/calibration_yaml.h"
 #include "slam/datasets/frame_assembly.h"
 #include "slam/datasets/image_blob.h"
@@ -38,6 +39,7 @@ struct ImageSession {
 };
 
 std::string ReadFileBytes(const std::string& path) {
+  RefuseNonRegularFile(path);  // before opening: a FIFO would block
   std::ifstream in(path, std::ios::binary);
   SLAM_THROW_IF_NOT(InputError, in.good()) << path << ": cannot open";
   std::ostringstream contents;

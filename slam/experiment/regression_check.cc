@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "slam/core/check.h"
+#include "slam/core/input_file.h"
 
 namespace duskmap {
 namespace {
@@ -117,6 +118,7 @@ std::vector<CellRates> ParseCellRates(std::istream& in, const std::string& path)
 }
 
 std::vector<CellRates> ReadCellRates(const std::string& path) {
+  RefuseNonRegularFile(path);  // before opening: a FIFO would block
   std::ifstream in(path);
   SLAM_THROW_IF_NOT(InputError, in.good()) << path << ": cannot open";
   return ParseCellRates(in, path);

@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "slam/core/check.h"
+#include "slam/core/input_file.h"
 #include "slam/features/dense_feature_maps.h"
 
 namespace duskmap {
@@ -56,6 +57,7 @@ OnnxFeatureExtractor::OnnxFeatureExtractor(const OnnxFeatureOptions& options, in
   const std::string& path = options_.model_path;
   SLAM_THROW_IF_NOT(InputError, !path.empty())
       << "features." << type_name_ << ".model_path: no ONNX model given (see docs/features.md)";
+  RefuseNonRegularFile(path);  // before opening: a FIFO would block
   SLAM_THROW_IF_NOT(InputError, std::ifstream(path).good())
       << path << ": " << (model_label_.empty() ? "" : model_label_ + " ")
       << "ONNX model not found";

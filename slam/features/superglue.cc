@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "slam/core/check.h"
+#include "slam/core/input_file.h"
 
 namespace duskmap {
 namespace {
@@ -117,6 +118,7 @@ SuperGlueMatcher::SuperGlueMatcher(const SuperGlueOptions& options) : options_(o
   const std::string& path = options_.model_path;
   SLAM_THROW_IF_NOT(InputError, !path.empty())
       << "superglue.model_path: no ONNX model given (see docs/features.md)";
+  RefuseNonRegularFile(path);  // before opening: a FIFO would block
   SLAM_THROW_IF_NOT(InputError, std::ifstream(path).good()) << path << ": SuperGlue ONNX model not found";
   try {
     net_ = cv::dnn::readNetFromONNX(path);

@@ -5,12 +5,13 @@
 #include <fstream>
 
 #include "slam/core/check.h"
+#include "slam/core/input_file.h"
 
 namespace duskmap {
 namespace {
 
 constexpr uint8_t kPngMagic[8] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
-// Bytes read up front: enough for PNG's IHDR and a PNM header with comments.
+// Bytes read up front: enough for PNG's IHDR, BMP's headers and a PNM header with comments.
 constexpr size_t kHeadBytes = 4096;
 // JPEG marker segments visited before giving up (each payload is at most
 // 64 kB, so real files reach their frame header within a few dozen).
@@ -33,6 +34,28 @@ bool IsJpeg(const uint8_t* data, size_t size) {
 bool IsPnm(const uint8_t* data, size_t size) {
   return size >= 3 && data[0] == 'P' && data[1] >= '1' && data[1] <= '6' &&
          std::strchr(" \t\r\n#", data[2]) != nullptr && data[2] != '\0';
+}
+
+// BMP: "BM", then the DIB header's size at 14: 12 for the old core header
+// (16-bit width and height at 18), else 32-bit width and height at 18 and 22,
+// little-endian, the height negative for a top-down image.
+bool IsBmp(const uint8_t* data, size_t size) { return size >= 3 && data[0] == 'B' && data[1] == 'M'; }
+
+int64_t ReadLittleEndian(const uint8_t* p, int bytes) {
+  uint64_t value = 0;
+  for (int i = bytes - 1; i >= 0; --i) value = (value << 8) | p[i];
+  return static_cast<int64_t>(value);
+}
+
+std::optional<ImageHeaderSize> BmpSize(const uint8_t* data, size_t size) {
+  if (size < 26) return std::nullopt;
+  if (ReadLittleEndian(data + 14, 4) == 12) {
+    return ImageHeaderSize{ReadLittleEndian(data + 18, 2), ReadLittleEndian(data + 20, 2)};
+  }
+  const int64_t width = static_cast<int32_t>(ReadLittleEndian(data + 18, 4));
+  const int64_t height = static_cast<int32_t>(ReadLittleEndian(data + 22, 4));
+  // A negative width is no image: it is judged as too large.
+  return ImageHeaderSize{width < 0 ? int64_t{1} << 40 : width, height < 0 ? -height : height};
 }
 
 std::optional<ImageHeaderSize> PngSize(const uint8_t* data, size_t size) {
@@ -110,6 +133,7 @@ bool WithinPixelLimit(const ImageHeaderSize& size) {
 std::optional<ImageHeaderSize> ReadImageHeaderSize(const uint8_t* data, size_t size) {
   if (IsPng(data, size)) return PngSize(data, size);
   if (IsPnm(data, size)) return PnmSize(data, size);
+  if (IsBmp(data, size)) return BmpSize(data, size);
   if (IsJpeg(data, size)) {
     return JpegSize([&](uint64_t offset, uint8_t* out, size_t n) {
       if (offset > size || n > size - offset) return false;
@@ -147,14 +171,51 @@ void CheckImageFilePixelLimit(const std::string& path) {
     const size_t got = static_cast<size_t>(in.gcount());
     // Other formats (TIFF, BMP, WebP, EXR, ...) would reach a decoder whose
     // allocation nothing checked first; they are refused by name instead.
-    SLAM_THROW_IF_NOT(InputError, got < 3 || IsPng(magic, got) || IsJpeg(magic, got) || IsPnm(magic, got))
-        << path << ": not a PNG, JPEG or PNM image (only these are read: their size is checked before decoding)";
+    SLAM_THROW_IF_NOT(InputError, got < 3 || IsPng(magic, got) || IsJpeg(magic, got) || IsPnm(magic, got) ||
+                                      IsBmp(magic, got))
+        << path << ": not a PNG, JPEG, PNM or BMP image (only these are read: their size is checked before decoding)";
   }
   const std::optional<ImageHeaderSize> size = ReadImageFileHeaderSize(path);
   if (!size) return;
   SLAM_THROW_IF_NOT(InputError, WithinPixelLimit(*size))
       << path << ": " << size->width << "x" << size->height << " image exceeds the "
       << (kMaxImagePixels >> 20) << "-Mpixel limit";
+}
+
+std::string ImageTruncation(bool is_jpeg, bool is_png, const uint8_t* tail, size_t tail_size) {
+  if (is_jpeg) {
+    for (size_t i = 0; i + 1 < tail_size; ++i) {
+      if (tail[i] == 0xFF && tail[i + 1] == 0xD9) return "";
+    }
+    return "JPEG is truncated (no end-of-image marker)";
+  }
+  // A PNG ends with the IEND chunk: length 0, "IEND", CRC (12 bytes).
+  if (is_png && (tail_size < 12 || std::memcmp(tail + tail_size - 8, "IEND", 4) != 0)) {
+    return "PNG is truncated (no IEND chunk)";
+  }
+  return "";
+}
+
+void CheckImageFileBeforeDecoding(const std::string& path) {
+  RefuseNonRegularFile(path);
+  CheckImageFilePixelLimit(path);
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in.good()) return;  // missing or unreadable: the decoder's caller names it
+  const std::streamoff size = in.tellg();
+  uint8_t head[8] = {};
+  uint8_t tail[kImageTrailerSearchBytes] = {};
+  in.seekg(0);
+  in.read(reinterpret_cast<char*>(head), sizeof(head));
+  const size_t head_size = static_cast<size_t>(in.gcount());
+  const std::streamoff tail_size =
+      std::min<std::streamoff>(size, static_cast<std::streamoff>(sizeof(tail)));
+  in.clear();
+  in.seekg(size - tail_size);
+  in.read(reinterpret_cast<char*>(tail), tail_size);
+  SLAM_THROW_IF_NOT(InputError, in.gcount() == tail_size) << path << ": cannot read its last bytes";
+  const std::string problem = ImageTruncation(IsJpeg(head, head_size), IsPng(head, head_size),
+                                              tail, static_cast<size_t>(tail_size));
+  SLAM_THROW_IF_NOT(InputError, problem.empty()) << path << ": " << problem;
 }
 
 }  // namespace duskmap

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "slam/core/check.h"
+#include "slam/core/input_file.h"
 #include "slam/core/system_error.h"
 #include "slam/core/json_codec.h"
 #include "slam/core/json_fields.h"
@@ -75,6 +76,7 @@ DatasetManifest ReadManifest(const std::string& dataset_path) {
   const std::string path = dataset_path + "/" + kManifestFileName;
   // A symlink loop or a permission problem is named as such, not as "missing".
   const fs::file_status status = PathStatus(path);
+  RefuseNonRegularFile(path);  // a FIFO or a folder is not "missing"
   SLAM_THROW_IF_NOT(InputError, status.type() == fs::file_type::regular)
       << path << ": missing (not a duskmap synthetic dataset)";
   DatasetManifest manifest;

@@ -7,11 +7,13 @@
 #include <sstream>
 
 #include "slam/core/check.h"
+#include "slam/core/input_file.h"
 #include "slam/io/output_safety.h"
 
 namespace duskmap {
 
 std::vector<TrajectoryPose> ReadTrajectory(const std::string& path) {
+  RefuseNonRegularFile(path);  // before opening: a FIFO would block
   std::ifstream in(path);
   SLAM_THROW_IF_NOT(InputError, in.good()) << path << ": cannot open trajectory file";
   std::vector<TrajectoryPose> poses;

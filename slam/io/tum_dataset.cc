@@ -10,6 +10,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "slam/core/check.h"
+#include "slam/core/input_file.h"
 #include "slam/io/image_header.h"
 #include "slam/io/path_status.h"
 #include "slam/io/trajectory_io.h"
@@ -38,6 +39,7 @@ std::vector<IndexEntry> ReadIndex(const std::string& folder, const std::string& 
                                   const TumReadOptions& options) {
   const std::string path = folder + "/" + name;
   StatusOf(path);
+  RefuseNonRegularFile(path);  // before opening: a FIFO would block
   std::ifstream in(path);
   SLAM_THROW_IF_NOT(InputError, in.good()) << path << ": cannot open index file";
   std::vector<IndexEntry> entries;
@@ -61,6 +63,7 @@ std::vector<IndexEntry> ReadIndex(const std::string& folder, const std::string& 
     SLAM_THROW_IF_NOT(InputError, has_timestamp && static_cast<bool>(fields >> entry.file) &&
                                       std::isfinite(entry.timestamp_s))
         << path << ":" << line_number << ": malformed line (expected 'timestamp filename')";
+    RefuseNonRegularFile(folder + "/" + entry.file);
     SLAM_THROW_IF_NOT(InputError,
                       StatusOf(folder + "/" + entry.file).type() == fs::file_type::regular)
         << folder << "/" << entry.file << ": missing image (listed in " << name << ":"
@@ -189,7 +192,8 @@ class TumSessionReader : public SessionReader {
     frame.image_file = folder_ + "/" + entry.rgb_file;
     frame.camera = calibration_.camera;
     frame.bgr = ReadImage(entry.rgb_file, cv::IMREAD_COLOR, CV_8UC3);
-    frame.depth_m = RawToDepth(ReadImage(entry.depth_file, cv::IMREAD_ANYDEPTH, CV_16UC1),
+    // Unchanged, so that a colour or 8-bit PNG is refused instead of converted.
+    frame.depth_m = RawToDepth(ReadImage(entry.depth_file, cv::IMREAD_UNCHANGED, CV_16UC1),
                                calibration_.depth_scale);
     SLAM_THROW_IF_NOT(InputError, frame.bgr.size() == frame.depth_m.size())
         << folder_ << "/" << entry.depth_file << ": size differs from its rgb image";
@@ -206,11 +210,15 @@ class TumSessionReader : public SessionReader {
  private:
   cv::Mat ReadImage(const std::string& file, int flags, int expected_type) const {
     const std::string path = folder_ + "/" + file;
-    CheckImageFilePixelLimit(path);  // before the decoder allocates what the header declares
+    // Type, size and truncation before the decoder allocates what the header
+    // declares or fills a cut JPEG with grey.
+    CheckImageFileBeforeDecoding(path);
     cv::Mat image = cv::imread(path, flags);
     SLAM_THROW_IF_NOT(InputError, !image.empty()) << path << ": cannot read image (truncated or corrupt)";
     SLAM_THROW_IF_NOT(InputError, image.type() == expected_type)
-        << path << ": unexpected image type " << image.type();
+        << path << ": " << (expected_type == CV_16UC1 ? "depth" : "colour")
+        << " image must be " << (expected_type == CV_16UC1 ? "single-channel 16-bit" : "8-bit BGR")
+        << ", got " << image.channels() << " channel(s) of " << (image.elemSize1() * 8) << " bits";
     return image;
   }
 

@@ -18,6 +18,7 @@
 
 #include "slam/core/check.h"
 #include "slam/core/checksum.h"
+#include "slam/core/input_file.h"
 #include "slam/map/map_codec.h"
 #include "slam/map/shared_rows.h"
 #include "slam/map/table_checksums.h"
@@ -199,6 +200,7 @@ void CheckFileHeader(const std::string& path) {
   struct stat info;
   SLAM_THROW_IF_NOT(InputError, ::stat(path.c_str(), &info) == 0)
       << path << ": no such map file";
+  RefuseNonRegularFile(path);  // before opening: a FIFO would block, a folder reads as nothing
   std::ifstream file(path, std::ios::binary);
   unsigned char header[100] = {};
   file.read(reinterpret_cast<char*>(header), sizeof(header));

@@ -10,6 +10,7 @@
 #include "slam/core/check.h"
 #include "slam/core/random.h"
 #include "slam/io/image_header.h"
+#include "slam/io/path_status.h"
 #include "slam/synthetic/photo_materials.h"
 #include "slam/synthetic/relief.h"
 
@@ -548,22 +549,25 @@ SurfaceTexture MakeTexture(const TextureRequest& request, const std::vector<cv::
 }
 
 std::vector<cv::Mat> LoadUserTextures(const std::string& folder) {
-  namespace fs = std::filesystem;
-  SLAM_THROW_IF_NOT(InputError, fs::is_directory(folder)) << folder << ": textures folder does not exist";
+  SLAM_THROW_IF_NOT(InputError, IsDirectoryPath(folder)) << folder << ": textures folder does not exist";
   std::vector<std::string> paths;
-  for (const auto& entry : fs::directory_iterator(folder)) {
-    std::string ext = entry.path().extension().string();
+  for (const std::filesystem::path& entry : SortedFolderEntries(folder)) {
+    std::string ext = entry.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-    if (ext == ".png" || ext == ".jpg" || ext == ".jpeg") paths.push_back(entry.path().string());
+    if (ext == ".png" || ext == ".jpg" || ext == ".jpeg") paths.push_back(entry.string());
   }
-  std::sort(paths.begin(), paths.end());
+  // Every image the folder offers is used or refused by name: one skipped
+  // without a word would change the dataset unseen. (Files of other
+  // extensions are not images to it: docs/synthetic_dataset.md.)
   std::vector<cv::Mat> images;
   for (const std::string& path : paths) {
-    CheckImageFilePixelLimit(path);  // before the decoder allocates what the header declares
+    CheckImageFileBeforeDecoding(path);  // type, size and truncation before decoding
     cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
-    if (!image.empty()) images.push_back(image);
+    SLAM_THROW_IF_NOT(InputError, !image.empty())
+        << path << ": cannot read this --textures image (unreadable or corrupt; fix or remove it)";
+    images.push_back(image);
   }
-  SLAM_THROW_IF_NOT(InputError, !images.empty()) << folder << ": no readable .png/.jpg image";
+  SLAM_THROW_IF_NOT(InputError, !images.empty()) << folder << ": no .png/.jpg image";
   return images;
 }
 

@@ -40,6 +40,23 @@ TEST(FrameAssembler, RegistersLowResolutionDepthAndKeepsColourIntrinsics) {
             "f: depth 48x48 does not have the aspect ratio of the colour image 64x48");
 }
 
+// A frame of another size than the session's first was scaled to intrinsics
+// of its own without a word (1x1 in a 64x48 session is within the one-pixel
+// aspect tolerance).
+TEST(FrameAssembler, FrameOfAnotherSizeThanTheFirstIsRefused) {
+  FrameAssembler assembler;
+  RgbdFrame frame;
+  assembler.Assemble(cv::Mat(48, 64, CV_8UC3, cv::Scalar::all(5)), cv::Mat(), Calibration(), "f0", &frame);
+  EXPECT_EQ(ErrorOf([&] {
+              assembler.Assemble(cv::Mat(1, 1, CV_8UC3, cv::Scalar::all(5)), cv::Mat(), Calibration(), "f1", &frame);
+            }),
+            "f1: image is 1x1, but the session's first is 64x48 (a session's images share one size)");
+  EXPECT_EQ(ErrorOf([&] {
+              assembler.Assemble(cv::Mat(48, 64, CV_8UC3, cv::Scalar::all(5)), cv::Mat(), Calibration(), "f2", &frame);
+            }),
+            "");
+}
+
 TEST(FrameAssembler, UndistortsColourAndDepth) {
   CameraCalibration c = Calibration();
   c.distortion = {0.3, 0.0, 0.0, 0.0, 0.0};

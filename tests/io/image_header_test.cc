@@ -1,6 +1,7 @@
 #include "slam/io/image_header.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -125,14 +126,74 @@ TEST(ImageHeader, ReadsTheSizeOfRealEncodedImages) {
 
 // A format whose size nothing reads first is refused by name, not decoded.
 TEST(ImageHeader, OtherFormatsAreRefusedByName) {
-  const std::string bmp = TempFile("small.bmp");
-  ASSERT_TRUE(cv::imwrite(bmp, cv::Mat(4, 4, CV_8UC3, cv::Scalar(1, 2, 3))));
-  EXPECT_FALSE(ReadImageFileHeaderSize(bmp).has_value());
-  EXPECT_EQ(ErrorOf(bmp), bmp + ": not a PNG, JPEG or PNM image (only these are read: their size "
-                                "is checked before decoding)");
   const std::string tiff = TempFile("small.tiff");
   ASSERT_TRUE(cv::imwrite(tiff, cv::Mat(4, 4, CV_8UC3, cv::Scalar(1, 2, 3))));
-  EXPECT_NE(ErrorOf(tiff).find(": not a PNG, JPEG or PNM image"), std::string::npos);
+  EXPECT_FALSE(ReadImageFileHeaderSize(tiff).has_value());
+  EXPECT_EQ(ErrorOf(tiff), tiff + ": not a PNG, JPEG, PNM or BMP image (only these are read: "
+                                  "their size is checked before decoding)");
+  const std::string gif = WriteBytes("small.gif", {'G', 'I', 'F', '8', '9', 'a', 4, 0, 4, 0});
+  EXPECT_NE(ErrorOf(gif).find(": not a PNG, JPEG, PNM or BMP image"), std::string::npos);
+}
+
+// BMP (the feature benchmarks' pairs may be BMP): its size from the DIB header.
+TEST(ImageHeader, BmpSizeIsReadFromItsHeader) {
+  const std::string bmp = TempFile("small.bmp");
+  ASSERT_TRUE(cv::imwrite(bmp, cv::Mat(3, 5, CV_8UC3, cv::Scalar(1, 2, 3))));
+  const std::optional<ImageHeaderSize> size = ReadImageFileHeaderSize(bmp);
+  ASSERT_TRUE(size.has_value());
+  EXPECT_EQ(size->width, 5);
+  EXPECT_EQ(size->height, 3);
+  EXPECT_EQ(ErrorOf(bmp), "");
+  // 100000 x -100000 (top-down): refused before decoding.
+  std::vector<uint8_t> huge = {'B', 'M', 0, 0, 0, 0, 0, 0, 0, 0, 54, 0, 0, 0, 40, 0, 0, 0};
+  Append(&huge, {0xA0, 0x86, 0x01, 0x00, 0x60, 0x79, 0xFE, 0xFF, 1, 0, 24, 0});
+  huge.resize(64, 0);
+  const std::string huge_path = WriteBytes("huge.bmp", huge);
+  EXPECT_EQ(ErrorOf(huge_path), huge_path + ": 100000x100000 image exceeds the 64-Mpixel limit");
+}
+
+std::string BeforeDecodingErrorOf(const std::string& path) {
+  try {
+    CheckImageFileBeforeDecoding(path);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// A decoder given a JPEG cut short returns a partly grey image without an
+// error: the file is refused from its missing end-of-image marker.
+TEST(ImageHeader, CutImagesAreRefusedBeforeDecoding) {
+  cv::Mat noise(128, 128, CV_8UC3);
+  cv::randu(noise, 0, 256);  // scan data well past the headers, where the cut falls
+  std::vector<uint8_t> jpeg;
+  ASSERT_TRUE(cv::imencode(".jpg", noise, jpeg));
+  EXPECT_EQ(BeforeDecodingErrorOf(WriteBytes("whole.jpg", jpeg)), "");
+  jpeg.resize(jpeg.size() * 2 / 3);
+  const std::string cut = WriteBytes("cut.jpg", jpeg);
+  EXPECT_FALSE(cv::imread(cut).empty()) << "OpenCV now refuses a cut JPEG itself";
+  EXPECT_EQ(BeforeDecodingErrorOf(cut), cut + ": JPEG is truncated (no end-of-image marker)");
+  std::vector<uint8_t> png;
+  ASSERT_TRUE(cv::imencode(".png", cv::Mat(64, 64, CV_8UC3, cv::Scalar(10, 200, 30)), png));
+  EXPECT_EQ(BeforeDecodingErrorOf(WriteBytes("whole.png", png)), "");
+  png.resize(png.size() - 5);
+  const std::string cut_png = WriteBytes("cut.png", png);
+  EXPECT_EQ(BeforeDecodingErrorOf(cut_png), cut_png + ": PNG is truncated (no IEND chunk)");
+  // A file whose header declares too many pixels is refused by the same call.
+  const std::string huge = WriteBytes("huge.ppm", {'P', '6', '\n', '1', '0', '0', '0', '0', '0', ' ',
+                                                   '1', '0', '0', '0', '0', '0', '\n', '2', '5', '5', '\n'});
+  EXPECT_EQ(BeforeDecodingErrorOf(huge), huge + ": 100000x100000 image exceeds the 64-Mpixel limit");
+}
+
+// A FIFO would block the decoder's open(); a folder is no image.
+TEST(ImageHeader, NonRegularFilesAreRefusedWithoutOpening) {
+  const std::string fifo = TempFile("image_fifo.png");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_EQ(BeforeDecodingErrorOf(fifo), fifo + ": is a FIFO (named pipe), not a regular file");
+  const std::string folder = TempFile("folder.png");
+  fs::create_directories(folder);
+  EXPECT_EQ(BeforeDecodingErrorOf(folder), folder + ": is a folder, not a regular file");
+  EXPECT_EQ(BeforeDecodingErrorOf(TempFile("missing.png")), "");  // named by the caller
 }
 
 // PNG sides are 32-bit: their product must not overflow before the check.

@@ -1,5 +1,6 @@
 #include "slam/io/tum_dataset.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -310,6 +311,75 @@ TEST(TumDataset, ImageOverThePixelLimitIsRefusedBeforeDecoding) {
   EXPECT_TRUE(session->Next().has_value());
   EXPECT_EQ(ErrorOf([&] { session->Next(); }),
             victim + ": 20000x20000 image exceeds the 64-Mpixel limit");
+}
+
+// OpenCV decodes a JPEG cut short into a partly grey image without an error:
+// the reader refuses it from its missing end-of-image marker.
+TEST(TumDataset, TruncatedJpegInASessionIsRefused) {
+  const std::string path = WriteSession(fs::path(ProcessTempDir("tum_cut_jpeg")) / "seq", MakeFrames(2));
+  const std::string stamp = TumStamp(60001.0);
+  std::vector<uint8_t> jpeg;
+  ASSERT_TRUE(cv::imencode(".jpg", MakeFrames(2)[1].bgr, jpeg));
+  jpeg.resize(jpeg.size() * 2 / 3);
+  const std::string victim = path + "/rgb/" + stamp + ".jpg";
+  std::ofstream(victim, std::ios::binary).write(reinterpret_cast<const char*>(jpeg.data()),
+                                                static_cast<std::streamsize>(jpeg.size()));
+  std::vector<std::string> lines = ReadLines(path + "/rgb.txt");
+  for (std::string& line : lines) {
+    if (line == IndexLine("rgb", 60001.0)) line = stamp + " rgb/" + stamp + ".jpg";
+  }
+  WriteLines(path + "/rgb.txt", lines);
+  ASSERT_FALSE(cv::imread(victim).empty()) << "OpenCV refuses a cut JPEG itself now";
+  std::unique_ptr<SessionReader> session = OpenTumDataset(path)->OpenSession("seq");
+  EXPECT_TRUE(session->Next().has_value());
+  EXPECT_EQ(ErrorOf([&] { session->Next(); }), victim + ": JPEG is truncated (no end-of-image marker)");
+}
+
+// Depth is one channel of 16 bits: a 16-bit colour PNG was read as its grey
+// conversion without a word.
+TEST(TumDataset, ColourDepthImageIsRefused) {
+  const std::string path = WriteSession(fs::path(ProcessTempDir("tum_colour_depth")) / "seq", MakeFrames(2));
+  const std::string victim = path + "/depth/" + TumStamp(60001.0) + ".png";
+  ASSERT_TRUE(cv::imwrite(victim, cv::Mat(24, 32, CV_16UC3, cv::Scalar(1000, 2000, 3000))));
+  std::unique_ptr<SessionReader> session = OpenTumDataset(path)->OpenSession("seq");
+  EXPECT_TRUE(session->Next().has_value());
+  EXPECT_EQ(ErrorOf([&] { session->Next(); }),
+            victim + ": depth image must be single-channel 16-bit, got 3 channel(s) of 16 bits");
+  // 8-bit grey depth is refused the same way.
+  ASSERT_TRUE(cv::imwrite(victim, cv::Mat(24, 32, CV_8UC1, cv::Scalar(7))));
+  session->Rewind();
+  EXPECT_TRUE(session->Next().has_value());
+  EXPECT_EQ(ErrorOf([&] { session->Next(); }),
+            victim + ": depth image must be single-channel 16-bit, got 1 channel(s) of 8 bits");
+}
+
+// A FIFO opened for reading blocks until a writer appears: index files and
+// images that are not regular files are refused from their type. (The alarm
+// ends the test process should the reader block again.)
+TEST(TumDataset, FifoAndFolderInputsAreRefusedWithoutOpening) {
+  alarm(120);
+  const std::string path = WriteSession(fs::path(ProcessTempDir("tum_fifo")) / "seq", MakeFrames(2));
+  const std::string image = path + "/rgb/" + TumStamp(60001.0) + ".png";
+  fs::remove(image);
+  ASSERT_EQ(::mkfifo(image.c_str(), 0600), 0);
+  EXPECT_EQ(ErrorOf([&] { OpenTumDataset(path); }), image + ": is a FIFO (named pipe), not a regular file");
+  const std::string other = WriteSession(fs::path(ProcessTempDir("tum_fifo_index")) / "seq", MakeFrames(2));
+  fs::remove(other + "/rgb.txt");
+  ASSERT_EQ(::mkfifo((other + "/rgb.txt").c_str(), 0600), 0);
+  EXPECT_EQ(ErrorOf([&] { OpenTumDataset(other); }),
+            other + "/rgb.txt: is a FIFO (named pipe), not a regular file");
+  const std::string third = WriteSession(fs::path(ProcessTempDir("tum_folder_truth")) / "seq", MakeFrames(2));
+  fs::remove(third + "/groundtruth.txt");
+  fs::create_directories(third + "/groundtruth.txt");
+  EXPECT_EQ(ErrorOf([&] { OpenTumDataset(third); }),
+            third + "/groundtruth.txt: is a folder, not a regular file");
+  // A synthetic dataset's manifest.json: not "missing", but what it is.
+  const fs::path dataset = ProcessTempDir("synthetic_fifo_manifest");
+  fs::create_directories(dataset);
+  ASSERT_EQ(::mkfifo((dataset / kManifestFileName).c_str(), 0600), 0);
+  EXPECT_EQ(ErrorOf([&] { OpenSyntheticDataset(dataset.string()); }),
+            (dataset / kManifestFileName).string() + ": is a FIFO (named pipe), not a regular file");
+  alarm(0);
 }
 
 TEST(TumDataset, SymlinkLoopsAreInputErrorsNamingThePath) {
