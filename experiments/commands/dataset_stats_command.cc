@@ -68,6 +68,12 @@ RunFn SetupStats(CLI::App& command) {
   command.add_option("--pairs-csv", args->pairs_csv,
                      "also write every corresponding frame pair's keypoints, matches and correct matches here");
   return [args] {
+    // The options before anything is read: each message names its flag.
+    try {
+      args->options.Check();
+    } catch (const ConfigError& e) {
+      throw ConfigError(std::string("dataset-stats: ") + e.what());
+    }
     // A path that cannot be written fails before the minutes of matching; an
     // existing file is left as it is until the new one is complete.
     if (!args->pairs_csv.empty()) {

@@ -126,14 +126,23 @@ std::vector<AnchorFrame> CollectAnchorFrames(const RealismOptions& o, SessionRea
 }  // namespace
 
 void RealismOptions::Check() const {
-  SLAM_THROW_IF_NOT(ConfigError, frame_step >= 1) << "frame_step must be >= 1, got " << frame_step;
-  SLAM_THROW_IF_NOT(ConfigError, max_features >= 10) << "max_features must be >= 10, got " << max_features;
+  // Upper bounds too: `--max-features 1e9` reached the detectors as a
+  // billion-keypoint request (bad_alloc); a threshold of 1e308 px accepts
+  // every match. Each message names the field and the flag that sets it.
+  SLAM_THROW_IF_NOT(ConfigError, frame_step >= 1 && frame_step <= 100000)
+      << "frame_step (--frame-step) must be in [1, 100000], got " << frame_step;
+  SLAM_THROW_IF_NOT(ConfigError, max_features >= 10 && max_features <= kMaxRealismFeatures)
+      << "max_features (--max-features) must be in [10, " << kMaxRealismFeatures << "], got " << max_features;
   SLAM_THROW_IF_NOT(ConfigError, sift_contrast_threshold > 0.0 && sift_contrast_threshold < 1.0)
-      << "sift_contrast_threshold must be in (0, 1), got " << sift_contrast_threshold;
+      << "sift_contrast_threshold (--sift-contrast) must be in (0, 1), got " << sift_contrast_threshold;
   SLAM_THROW_IF_NOT(ConfigError, ratio_test > 0 && ratio_test <= 1) << "ratio_test must be in (0, 1], got " << ratio_test;
-  SLAM_THROW_IF_NOT(ConfigError, max_reprojection_px > 0) << "max_reprojection_px must be > 0";
+  SLAM_THROW_IF_NOT(ConfigError, max_reprojection_px > 0 && max_reprojection_px <= kMaxRealismReprojectionPx)
+      << "max_reprojection_px (--max-error-px) must be in (0, " << kMaxRealismReprojectionPx << "], got "
+      << max_reprojection_px;
   SLAM_THROW_IF_NOT(ConfigError, max_position_gap_m > 0 && max_angle_gap_deg > 0) << "correspondence gaps must be > 0";
-  SLAM_THROW_IF_NOT(ConfigError, min_correct_matches >= 1) << "min_correct_matches must be >= 1";
+  SLAM_THROW_IF_NOT(ConfigError, min_correct_matches >= 1 && min_correct_matches <= max_features)
+      << "min_correct_matches (--min-correct) must be in [1, max_features = " << max_features << "], got "
+      << min_correct_matches;
 }
 
 RealismReport ComputeRealism(const DatasetReader& dataset, const RealismOptions& options) {

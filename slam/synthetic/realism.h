@@ -22,6 +22,12 @@
 
 namespace duskmap {
 
+// The most features per frame and detector (the engine's own limit,
+// FeatureOptions::max_features), and the largest reprojection threshold: a
+// match beyond 100 px of ground truth is no correspondence at these sizes.
+inline constexpr int kMaxRealismFeatures = 100000;
+inline constexpr double kMaxRealismReprojectionPx = 100.0;
+
 struct RealismOptions {
   int frame_step = 10;               // anchor spacing in frames of the first session
   int max_features = 1000;           // per frame and detector
@@ -34,7 +40,7 @@ struct RealismOptions {
   double max_angle_gap_deg = 20.0;   // anchor correspondence: largest viewing-direction difference
   int min_correct_matches = 10;      // "SIFT finds correct matches" threshold per frame pair
 
-  void Check() const;
+  void Check() const;  // throws ConfigError naming the field and its dataset-stats flag
 };
 
 // One corresponding frame pair: an anchor seen in two sessions.

@@ -12,6 +12,7 @@
 #include "slam/io/synthetic_dataset.h"
 #include "slam/synthetic/generator.h"
 #include "tests/synthetic/small_config.h"
+#include "tests/testing/error_of.h"
 #include "tests/testing/temp_dir.h"
 
 namespace duskmap {
@@ -105,6 +106,26 @@ TEST_F(RealismTest, ALowerSiftContrastThresholdFindsMoreKeypoints) {
     return total;
   };
   EXPECT_GT(keypoints(0.02), keypoints(0.04) * 5 / 4);
+}
+
+// `dataset-stats --max-features 1e9` ended in bad_alloc and --max-error-px
+// 1e308 counted every match as correct: both are refused, naming the flag.
+TEST(RealismOptions, UpperBoundsAreCheckedNamingTheFlag) {
+  RealismOptions options;
+  EXPECT_NO_THROW(options.Check());
+  options.max_features = 1000000000;
+  EXPECT_EQ(testing::ErrorOf([&] { options.Check(); }),
+            "max_features (--max-features) must be in [10, 100000], got 1000000000");
+  options = RealismOptions();
+  options.max_reprojection_px = 1e308;
+  EXPECT_EQ(testing::ErrorOf([&] { options.Check(); }),
+            "max_reprojection_px (--max-error-px) must be in (0, 100], got 1e+308");
+  options = RealismOptions();
+  options.frame_step = 1000000;
+  EXPECT_THROW(options.Check(), ConfigError);
+  options = RealismOptions();
+  options.min_correct_matches = options.max_features + 1;
+  EXPECT_THROW(options.Check(), ConfigError);
 }
 
 TEST_F(RealismTest, RejectsBadOptionsAndASingleSession) {
