@@ -97,6 +97,7 @@ class DatasetReader {
     SLAM_THROW_IF_NOT(InputError, rank >= 0 && rank <= 2) << where_ << ": has " << rank << " dimensions";
     dims_.resize(rank);
     if (rank > 0) H5Sget_simple_extent_dims(space_.get(), dims_.data(), nullptr);
+    RequirePlausibleSize();
   }
 
   const std::string& where() const { return where_; }
@@ -107,6 +108,7 @@ class DatasetReader {
            H5Tget_sign(type_.get()) == H5T_SGN_NONE;
   }
   std::string type_text() const { return TypeText(type_.get()); }
+  size_t type_bytes() const { return H5Tget_size(type_.get()); }
   std::string shape_text() const {
     std::ostringstream text;
     for (size_t i = 0; i < dims_.size(); ++i) text << (i ? " x " : "") << dims_[i];
@@ -137,6 +139,31 @@ class DatasetReader {
     RequireFinite(values.data(), n);
     return values;
   }
+
+  // The declared shape is checked before anything is allocated for it: a
+  // dataset declaring 10^11 rows made the reader throw bad_alloc. Without
+  // compression, the values must fit in the file; with it, in what one
+  // image's features could need (kMaxValues).
+  void RequirePlausibleSize() const {
+    long double values = 1;
+    for (hsize_t d : dims_) values *= static_cast<long double>(d);
+    SLAM_THROW_IF_NOT(InputError, values <= kMaxValues)
+        << where_ << ": declares " << shape_text() << " values, more than an image's features "
+        << "could need (at most " << kMaxValues << "); the file is damaged or not hloc's layout";
+    hsize_t file_bytes = 0;
+    const Handle file(H5Iget_file_id(id_.get()), H5Fclose);
+    const Handle create(H5Dget_create_plist(id_.get()), H5Pclose);
+    const bool compressed = !create.ok() || H5Pget_nfilters(create.get()) != 0;
+    if (compressed || !file.ok() || H5Fget_filesize(file.get(), &file_bytes) < 0) return;
+    const long double bytes = values * static_cast<long double>(type_bytes());
+    SLAM_THROW_IF_NOT(InputError, bytes <= static_cast<long double>(file_bytes))
+        << where_ << ": declares " << shape_text() << " values of " << type_text() << " ("
+        << static_cast<uint64_t>(bytes) << " bytes), more than the whole file holds ("
+        << file_bytes << " bytes); the file is damaged or was not written to the end";
+  }
+
+  // 2^27 values (512 MiB as float32): 500,000 keypoints of 256 dimensions.
+  static constexpr size_t kMaxValues = size_t{1} << 27;
 
   void RequireFinite(const float* values, size_t n) const {
     for (size_t i = 0; i < n; ++i) {
@@ -256,7 +283,10 @@ H5ImageFeatures H5FeatureFile::Read(const std::string& image, DescriptorKind kin
   H5ImageFeatures out;
   cv::Mat by_column;  // D x N, as stored
   if (kind == DescriptorKind::kFloat) {
-    SLAM_THROW_IF_NOT(InputError, descriptors.type_class() == H5T_FLOAT)
+    // float64 is refused, not narrowed: the docs and hloc's layout name
+    // float32 and float16, and silently narrowing hid a file's wrong type.
+    SLAM_THROW_IF_NOT(InputError, descriptors.type_class() == H5T_FLOAT &&
+                                      (descriptors.type_bytes() == 4 || descriptors.type_bytes() == 2))
         << descriptors.where() << ": descriptor_kind float needs float32 or float16, got "
         << descriptors.type_text();
     by_column.create(d, static_cast<int>(n), CV_32F);

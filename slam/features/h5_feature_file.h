@@ -70,8 +70,10 @@ class H5FeatureFile {
   // Reads the group `image`. Throws InputError "<path>: <image>: <problem>"
   // for a missing group, a missing or misshapen dataset, N that differs
   // between keypoints, descriptors and scores, descriptors whose dtype is not
-  // `kind`'s (float for kFloat, uint8 for kBinary), NaN or infinity in any
-  // value, or a dataset that cannot be read (truncated file).
+  // `kind`'s (float32 or float16 for kFloat, uint8 for kBinary), NaN or
+  // infinity in any value, a dataset that declares more values than the file
+  // could hold (checked before allocating), or a dataset that cannot be read
+  // (truncated file).
   H5ImageFeatures Read(const std::string& image, DescriptorKind kind,
                        KeypointOrigin origin = KeypointOrigin::kPixelCentre) const;
 

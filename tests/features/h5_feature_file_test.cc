@@ -203,6 +203,90 @@ TEST(H5FeatureFile, BadFilesAndGroupsAreNamedInOneLine) {
   EXPECT_EQ(read("short_scores"), path + ": short_scores/scores: scores must have 3 values (one per keypoint), got 2");
 }
 
+// Numbers are checked where they enter: infinity in any dataset, float64
+// descriptors (the docs name float32 and float16; they were narrowed
+// silently), and declared shapes that no file of this size holds (10^11 rows
+// made the reader throw bad_alloc) are one-line errors naming the file, the
+// dataset and the problem.
+TEST(H5FeatureFile, InfiniteValuesFloat64DescriptorsAndImpossibleShapesAreRefused) {
+  if (!HasH5py()) GTEST_SKIP() << "python3-h5py is not installed (scripts/setup.sh installs it)";
+  const std::string path = TempPath("numbers.h5");
+  ASSERT_TRUE(RunPython(
+      "import h5py, numpy as np\n"
+      "with h5py.File('" + path + "', 'w') as f:\n"
+      "    k = np.ones((3, 2), np.float32)\n"
+      "    d = np.ones((8, 3), np.float32)\n"
+      "    def add(name, **datasets):\n"
+      "        g = f.create_group(name)\n"
+      "        for key, value in datasets.items(): g[key] = value\n"
+      "    add('inf_keypoint', keypoints=np.array([[1, 1], [2, 2], [3, -np.inf]], np.float32), descriptors=d)\n"
+      "    add('inf_score', keypoints=k, descriptors=d, scores=np.array([0.5, np.inf, 1], np.float32))\n"
+      "    add('nan_size', keypoints=k, descriptors=d, keypoint_sizes=np.array([1, 2, np.nan], np.float32))\n"
+      "    add('inf_descriptor', keypoints=k, descriptors=np.full((8, 3), np.inf, np.float16))\n"
+      "    add('float64_nan_keypoint', keypoints=np.array([[1, 1], [np.nan, 2], [3, 3]]), descriptors=d)\n"
+      "    add('float64_descriptors', keypoints=k, descriptors=np.ones((8, 3), np.float64))\n"
+      "    add('float16_descriptors', keypoints=k, descriptors=np.ones((8, 3), np.float16))\n"
+      "    g = f.create_group('huge_rows')\n"
+      "    g.create_dataset('keypoints', shape=(10**11, 2), dtype='f4')\n"
+      "    g['descriptors'] = d\n"
+      "    g = f.create_group('huge_descriptors')\n"
+      "    g['keypoints'] = k\n"
+      "    g.create_dataset('descriptors', shape=(10**9, 3), dtype='f4')\n"
+      "    g = f.create_group('huge_compressed')\n"
+      "    g.create_dataset('keypoints', shape=(10**11, 2), dtype='f4', chunks=(4096, 2), compression='gzip')\n"
+      "    g['descriptors'] = d\n"));
+  const H5FeatureFile file(path, H5FeatureFile::Mode::kRead);
+  const auto read = [&](const std::string& group) {
+    return ErrorOf([&] { file.Read(group, DescriptorKind::kFloat); });
+  };
+  EXPECT_EQ(read("inf_keypoint"), path + ": inf_keypoint/keypoints: value 5 is -inf");
+  EXPECT_EQ(read("inf_score"), path + ": inf_score/scores: value 1 is inf");
+  EXPECT_EQ(read("nan_size"), path + ": nan_size/keypoint_sizes: value 2 is nan");
+  EXPECT_EQ(read("inf_descriptor"), path + ": inf_descriptor/descriptors: value 0 is inf");
+  EXPECT_EQ(read("float64_nan_keypoint"), path + ": float64_nan_keypoint/keypoints: value 2 is nan");
+  EXPECT_EQ(read("float64_descriptors"),
+            path + ": float64_descriptors/descriptors: descriptor_kind float needs float32 or "
+                   "float16, got float64");
+  EXPECT_EQ(read("float16_descriptors"), "");
+  const std::string huge = read("huge_rows");
+  EXPECT_EQ(huge.rfind(path + ": huge_rows/keypoints: declares 100000000000 x 2 values, more than "
+                              "an image's features could need", 0),
+            0u)
+      << huge;
+  EXPECT_EQ(read("huge_compressed").rfind(path + ": huge_compressed/keypoints: declares "
+                                                 "100000000000 x 2 values",
+                                          0),
+            0u)
+      << read("huge_compressed");
+  const std::string descriptors = read("huge_descriptors");
+  EXPECT_EQ(descriptors.rfind(path + ": huge_descriptors/descriptors: declares 1000000000 x 3 "
+                                     "values, more than an image's features could need",
+                              0),
+            0u)
+      << descriptors;
+}
+
+TEST(H5FeatureFile, DeclaredShapesBeyondTheFileSizeAreRefusedBeforeAllocating) {
+  if (!HasH5py()) GTEST_SKIP() << "python3-h5py is not installed (scripts/setup.sh installs it)";
+  const std::string path = TempPath("unwritten.h5");
+  // 10^7 x 2 float32 keypoints (80 MB) declared, never written: the file is a few kB.
+  ASSERT_TRUE(RunPython(
+      "import h5py, numpy as np\n"
+      "with h5py.File('" + path + "', 'w') as f:\n"
+      "    g = f.create_group('img')\n"
+      "    g.create_dataset('keypoints', shape=(10**7, 2), dtype='f4')\n"
+      "    g['descriptors'] = np.ones((8, 1), np.float32)\n"));
+  const H5FeatureFile file(path, H5FeatureFile::Mode::kRead);
+  const std::string error = ErrorOf([&] { file.Read("img", DescriptorKind::kFloat); });
+  EXPECT_EQ(error.rfind(path + ": img/keypoints: declares 10000000 x 2 values of float32 (80000000 "
+                               "bytes), more than the whole file holds (",
+                        0),
+            0u)
+      << error;
+  EXPECT_NE(error.find(" bytes); the file is damaged or was not written to the end"), std::string::npos)
+      << error;
+}
+
 TEST(H5FeatureFile, MissingTruncatedAndForeignFilesAreRefused) {
   const std::string missing = TempPath("missing.h5");
   EXPECT_EQ(ErrorOf([&] { H5FeatureFile(missing, H5FeatureFile::Mode::kRead); }),
