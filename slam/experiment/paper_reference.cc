@@ -1,14 +1,85 @@
 #include "slam/experiment/paper_reference.h"
 
 #include <algorithm>
+#include <map>
+#include <set>
 
 #include "slam/core/json_fields.h"
 #include "slam/experiment/report_table.h"
 
 namespace duskmap {
+namespace {
+
+// The keys of a paper file: what the report reads, and what documents it.
+// Rows below a table's metrics (map names, gap classes) are the paper's own.
+const std::set<std::string>& DescriptiveKeys() {
+  static const std::set<std::string> keys = {"source", "features", "feature_order", "sessions",
+                                             "map_notation", "parameters", "notes"};
+  return keys;
+}
+
+// Each table the report fills, with the keys it holds besides "caption",
+// "columns", "note" and "<key>_note"; an empty set: its keys are its rows.
+const std::map<std::string, std::set<std::string>>& TableKeys() {
+  static const std::map<std::string, std::set<std::string>> keys = {
+      {"table_cumulative_relocalization", {"relocalization_pct", "visual_inliers_pct", "jumps_mm"}},
+      {"table_ram_mb", {"nodes", "ram_mb", "constant_overhead_mb"}},
+      {"table_reduced_graph", {"nodes", "reduction_pct"}},
+      {"table_timing",
+       {"feature_detection_ms", "loop_closure_detection_ms", "transformation_estimation_ms",
+        "features_per_frame", "vocabulary_size_thousands", "descriptor_dimension",
+        "descriptor_bytes_per_element"}},
+      {"table_ate_mm", {}},
+      {"table_gap_distance", {}}};
+  return keys;
+}
+
+bool IsNoteKey(const std::string& key) {
+  return key == "note" || (key.size() > 5 && key.compare(key.size() - 5, 5, "_note") == 0);
+}
+
+// A misspelt key would leave its values out of the report without a word:
+// unknown keys are refused, naming the file and the key.
+void CheckPaperKeys(const nlohmann::json& root, const std::string& path) {
+  SLAM_THROW_IF_NOT(ConfigError, root.is_object()) << path << ": expected a JSON object (the paper's values)";
+  for (auto it = root.begin(); it != root.end(); ++it) {
+    const std::string& key = it.key();
+    if (key == JsonFields::kCommentKey || DescriptiveKeys().count(key) > 0) continue;
+    if (key == "qualitative_findings") {
+      SLAM_THROW_IF_NOT(ConfigError, it->is_array()) << path << ": qualitative_findings: expected a list of texts";
+      for (const nlohmann::json& finding : *it) {
+        SLAM_THROW_IF_NOT(ConfigError, finding.is_string())
+            << path << ": qualitative_findings: expected a list of texts";
+      }
+      continue;
+    }
+    const auto table = TableKeys().find(key);
+    SLAM_THROW_IF_NOT(ConfigError, table != TableKeys().end())
+        << path << ": unknown key '" << key << "' (the report reads qualitative_findings and "
+        << "table_cumulative_relocalization, table_ram_mb, table_reduced_graph, table_timing, "
+        << "table_ate_mm, table_gap_distance)";
+    SLAM_THROW_IF_NOT(ConfigError, it->is_object()) << path << ": " << key << ": expected an object";
+    const nlohmann::json columns = it->value("columns", nlohmann::json());
+    SLAM_THROW_IF_NOT(ConfigError, columns.is_array() && !columns.empty() &&
+                                       std::all_of(columns.begin(), columns.end(),
+                                                   [](const nlohmann::json& c) { return c.is_string(); }))
+        << path << ": " << key << ".columns: expected a list of feature codes";
+    if (table->second.empty()) continue;
+    for (auto field = it->begin(); field != it->end(); ++field) {
+      const std::string& name = field.key();
+      SLAM_THROW_IF_NOT(ConfigError, name == "caption" || name == "columns" || name == JsonFields::kCommentKey ||
+                                         IsNoteKey(name) || table->second.count(name) > 0)
+          << path << ": unknown key '" << key << "." << name << "'";
+    }
+  }
+}
+
+}  // namespace
 
 PaperReference PaperReference::Load(const std::string& path) {
-  return PaperReference(ReadJsonFile(path));
+  nlohmann::json root = ReadJsonFile(path);
+  CheckPaperKeys(root, path);
+  return PaperReference(std::move(root));
 }
 
 std::optional<double> PaperReference::Value(const std::vector<std::string>& keys,

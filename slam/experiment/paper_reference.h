@@ -15,7 +15,10 @@ class ReportTable;
 
 class PaperReference {
  public:
-  // Throws ConfigError("<path>: ...") when the file cannot be read.
+  // Throws ConfigError("<path>: ...") when the file cannot be read, and for a
+  // key the report does not know ("<path>: unknown key 'table_ate'"): the
+  // tables it fills, their metrics, qualitative_findings, and the keys that
+  // describe the paper (source, features, sessions, ...; docs/experiments.md).
   static PaperReference Load(const std::string& path);
   explicit PaperReference(nlohmann::json root) : root_(std::move(root)) {}
 
