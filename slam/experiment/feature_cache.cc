@@ -1,5 +1,6 @@
 #include "slam/experiment/feature_cache.h"
 
+#include <cerrno>
 #include <cstring>
 #include <system_error>
 #include <utility>
@@ -89,7 +90,8 @@ const std::filesystem::path& FreshPath(const std::filesystem::path& path) {
 FeatureCacheWriter::FeatureCacheWriter(const std::filesystem::path& path,
                                        const std::string& extractor, const SessionInfo& session)
     : path_(path), out_(FreshPath(path), std::ios::out | std::ios::binary | std::ios::trunc) {
-  SLAM_THROW_IF_NOT(InputError, out_.is_open()) << path.string() << ": cannot write";
+  SLAM_THROW_IF_NOT(InputError, out_.is_open()) << path.string() << ": cannot write: " << LastSystemError();
+  errno = 0;
   out_.write(kMagic, sizeof(kMagic));
   WriteString(out_, extractor);
   WriteString(out_, session.name);
@@ -98,6 +100,13 @@ FeatureCacheWriter::FeatureCacheWriter(const std::filesystem::path& path,
   WritePod(out_, static_cast<uint8_t>(session.has_ground_truth));
   count_position_ = out_.tellp();
   WritePod(out_, int64_t{0});  // patched by Close()
+  ThrowIfWriteFailed();
+}
+
+void FeatureCacheWriter::ThrowIfWriteFailed() const {
+  // errno is cleared before each step's writes and read right after them:
+  // a full disk reads "No space left on device", not a later call's reason.
+  SLAM_THROW_IF_NOT(InputError, out_.good()) << path_.string() << ": write failed: " << LastSystemError();
 }
 
 void FeatureCacheWriter::Append(const RgbdFrame& frame, const FrameFeatures& features) {
@@ -106,6 +115,7 @@ void FeatureCacheWriter::Append(const RgbdFrame& frame, const FrameFeatures& fea
                                     features.descriptors.rows == static_cast<int>(features.size()))
       << path_.string() << ": frame " << frame.frame_index
       << " has inconsistent features (keypoints, descriptors and points differ in count)";
+  errno = 0;
   out_.put(kFrameTag);
   WritePod(out_, frame.frame_index);
   WritePod(out_, frame.timestamp_s);
@@ -121,17 +131,22 @@ void FeatureCacheWriter::Append(const RgbdFrame& frame, const FrameFeatures& fea
   WriteBlob(out_, EncodeKeypoints(features.keypoints));
   WriteBlob(out_, features.descriptors.empty() ? Blob() : EncodeMatrix(features.descriptors));
   WriteBlob(out_, EncodePoints(features.points_in_camera));
+  ThrowIfWriteFailed();
   ++num_frames_;
 }
 
 void FeatureCacheWriter::Close() {
   SLAM_CHECK(!closed_);
+  errno = 0;
   out_.put(kEndTag);
+  out_.flush();  // before the seek, whose own flush would not keep the reason
+  ThrowIfWriteFailed();
   out_.seekp(count_position_);
   WritePod(out_, num_frames_);
   out_.flush();
-  SLAM_THROW_IF_NOT(InputError, out_.good()) << path_.string() << ": write failed: " << LastSystemError();
+  ThrowIfWriteFailed();
   out_.close();
+  SLAM_THROW_IF_NOT(InputError, !out_.fail()) << path_.string() << ": write failed: " << LastSystemError();
   closed_ = true;
 }
 

@@ -36,6 +36,9 @@ class FeatureCacheWriter {
   int64_t num_frames() const { return num_frames_; }
 
  private:
+  // InputError "<path>: write failed: <the system's reason>" once a write failed.
+  void ThrowIfWriteFailed() const;
+
   std::filesystem::path path_;
   std::fstream out_;
   std::streampos count_position_;

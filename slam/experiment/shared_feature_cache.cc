@@ -2,11 +2,14 @@
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <fstream>
 #include <system_error>
+#include <vector>
 
 #include "slam/core/check.h"
 #include "slam/core/checksum.h"
+#include "slam/core/system_error.h"
 #include "slam/core/json_reader.h"
 #include "slam/features/feature_options_json.h"
 #include "slam/experiment/feature_cache.h"
@@ -58,13 +61,36 @@ std::optional<int64_t> FramesIn(const fs::path& file) {
   }
 }
 
+// Copies `from` to the new file `to`; a failed write throws InputError
+// "<to>: write failed: <the system's reason>" (std::filesystem::copy_file
+// reports a full disk as "Input/output error").
+void CopyFileWhole(const fs::path& from, const fs::path& to) {
+  errno = 0;
+  std::ifstream in(from, std::ios::binary);
+  SLAM_THROW_IF_NOT(InputError, in.is_open()) << from.string() << ": cannot read: " << LastSystemError();
+  errno = 0;
+  std::ofstream out(to, std::ios::binary | std::ios::trunc);
+  SLAM_THROW_IF_NOT(InputError, out.is_open()) << to.string() << ": cannot write: " << LastSystemError();
+  std::vector<char> buffer(size_t{1} << 20);
+  while (in) {
+    in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    errno = 0;
+    out.write(buffer.data(), in.gcount());
+    SLAM_THROW_IF_NOT(InputError, out.good()) << to.string() << ": write failed: " << LastSystemError();
+  }
+  SLAM_THROW_IF_NOT(InputError, in.eof()) << from.string() << ": read failed: " << LastSystemError();
+  errno = 0;
+  out.close();
+  SLAM_THROW_IF_NOT(InputError, !out.fail()) << to.string() << ": write failed: " << LastSystemError();
+}
+
 // Hard-links `from` to `to` (a fresh name: `to` is removed first), copying
 // when a link cannot be made (another file system).
 void LinkOrCopy(const fs::path& from, const fs::path& to) {
   std::error_code ec;
   fs::remove(to, ec);
   fs::create_hard_link(from, to, ec);
-  if (ec) fs::copy_file(from, to, fs::copy_options::overwrite_existing);
+  if (ec) CopyFileWhole(from, to);
 }
 
 }  // namespace
@@ -130,17 +156,19 @@ void SharedFeatureCache::Store(const std::string& key, const fs::path& cache_fil
     fs::remove_all(partial, ec);
     fs::create_directories(partial);
     LinkOrCopy(cache_file, partial / kEntryFile);
+    errno = 0;
     std::ofstream out(partial / kSummaryFile);
     out << summary.dump(1) << "\n";
     out.close();
     SLAM_THROW_IF_NOT(InputError, out.good())
-        << (partial / kSummaryFile).string() << ": cannot write the feature cache's summary";
+        << (partial / kSummaryFile).string() << ": cannot write the feature cache's summary: "
+        << LastSystemError();
     fs::rename(partial, entry, ec);  // fails when another run stored it first: keep theirs
     if (ec) fs::remove_all(partial, ec);
   } catch (const fs::filesystem_error& e) {
     fs::remove_all(partial, ec);
-    SLAM_THROW(InputError) << options_.folder.string() << ": cannot store a feature cache ("
-                           << e.code().message() << ")";
+    SLAM_THROW(InputError) << (e.path1().empty() ? options_.folder : e.path1()).string()
+                           << ": cannot store a feature cache (" << e.code().message() << ")";
   } catch (const Error&) {
     fs::remove_all(partial, ec);
     throw;
