@@ -65,13 +65,21 @@ void WriteFile(const std::filesystem::path& path, const std::string& text) {
   SLAM_THROW_IF_NOT(InputError, out.good()) << path.string() << ": write failed";
 }
 
-// --out is a folder: refused when something else is there, created when absent.
-void PrepareOutFolder(const std::string& out_dir) {
+// --out is a folder: refused before any work when something else is there,
+// or when the nearest part of its path that exists is not a folder.
+void CheckOutFolder(const std::string& out_dir) {
   const std::filesystem::file_status status = PathStatus(out_dir);
   SLAM_THROW_IF_NOT(ConfigError, status.type() == std::filesystem::file_type::not_found ||
                                      status.type() == std::filesystem::file_type::directory)
       << "features eval: --out " << out_dir
       << ": exists and is not a folder (features_eval.json and features_eval.md are written into a folder)";
+  std::filesystem::path existing = std::filesystem::path(out_dir).parent_path();
+  while (!existing.empty() && !PathExists(existing)) existing = existing.parent_path();
+  SLAM_THROW_IF_NOT(ConfigError, existing.empty() || IsDirectoryPath(existing))
+      << "features eval: --out " << out_dir << ": " << existing.string() << " is not a folder";
+}
+
+void CreateOutFolder(const std::string& out_dir) {
   std::error_code error;
   std::filesystem::create_directories(out_dir, error);
   SLAM_THROW_IF_NOT(InputError, !error) << out_dir << ": cannot create the folder: " << error.message();
@@ -90,7 +98,7 @@ int RunEval(const EvalArgs& args) {
       << "features eval: --layout must be auto, homography, static or pairs, got '" << args.layout << "'";
   const std::vector<std::string> types = ParseTypes(args.types);
   const std::vector<PairSelector> selectors = PairSelectors(args);
-  if (!args.out_dir.empty()) PrepareOutFolder(args.out_dir);
+  if (!args.out_dir.empty()) CheckOutFolder(args.out_dir);
   cv::setNumThreads(args.threads);  // timings per core by default, like the benchmark
   FeatureOptions features;
   if (!args.config.empty()) {
@@ -147,6 +155,7 @@ int RunEval(const EvalArgs& args) {
   }
   std::cout << table;
   if (!args.out_dir.empty()) {
+    CreateOutFolder(args.out_dir);
     const std::filesystem::path dir(args.out_dir);
     WriteFile(dir / "features_eval.json", json.dump(2) + "\n");
     WriteFile(dir / "features_eval.md", header + table);

@@ -422,8 +422,15 @@ TEST(FeaturesEvalCli, OutOntoAFileIsRefused) {
   EXPECT_EQ(ReadText(dir + "/notes.txt"), "mine\n");
   ExpectOneLineError(
       RunDuskmap("features eval --data " + dir + "/webcam --types orb --out " + dir + "/notes.txt/eval"),
-      {dir + "/notes.txt/eval"});
+      {"--out " + dir + "/notes.txt/eval: " + dir + "/notes.txt is not a folder"});
   EXPECT_EQ(ReadText(dir + "/notes.txt"), "mine\n");
+  // A run that fails on its input leaves no --out folder behind.
+  cv::imwrite(dir + "/webcam/img3.png", cv::Mat(100, 120, CV_8UC1, cv::Scalar(50)));
+  const Result sizes = RunDuskmap("features eval --data " + dir + "/webcam --types orb --out " + dir + "/never");
+  EXPECT_NE(sizes.exit_code, 0);
+  EXPECT_NE(sizes.output.find(dir + "/webcam/img3.png: 120x100, but img1.png is 320x240"), std::string::npos)
+      << sizes.output;
+  EXPECT_FALSE(fs::exists(dir + "/never"));
 }
 
 // The worked example of docs/features.md: an external extractor (OpenCV's
