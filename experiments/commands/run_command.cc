@@ -22,10 +22,12 @@
 #include "slam/core/check.h"
 #include "slam/core/checksum.h"
 #include "slam/core/json_fields.h"
+#include "slam/core/timer.h"
 #include "slam/datasets/dataset_factory.h"
 #include "slam/datasets/dataset_identity.h"
 #include "slam/engine/engine_options.h"
 #include "slam/experiment/engine_executor.h"
+#include "slam/experiment/feature_files.h"
 #include "slam/experiment/job_runner.h"
 #include "slam/experiment/run_manifest.h"
 #include "slam/io/folder_commit.h"
@@ -163,7 +165,8 @@ RunFn SetupRun(CLI::App& command) {
   command.add_flag("!--no-figures", args->figures, "write the report's tables only");
   command.add_option("--feature-cache", args->feature_cache,
                      "folder of extracted features kept across runs: an extract job whose "
-                     "dataset, program, feature options and frame selection match an entry "
+                     "session's files (by content), program, feature options, model or h5 "
+                     "file and frame selection match an entry "
                      "restores it instead of extracting (docs/experiments.md)");
   return [args] {
     const ExperimentOptions options = ReadExperimentOptions(args->config);
@@ -213,11 +216,17 @@ RunFn SetupRun(CLI::App& command) {
         << args->config << ": every feature type was skipped";
     const ExperimentPlan full_plan = PlanFromManifest(options, manifest);
     const ExperimentPlan plan = SelectShard(full_plan, shard_index, shard_count);
+    // Every file of the dataset and every model or h5 file is read once here:
+    // content, not size or time, decides what a resume or the feature cache reuses.
+    Stopwatch checksum_watch;
+    const nlohmann::json dataset_identity =
+        DatasetIdentityRead(options, sessions, args->allow_unordered);
+    const nlohmann::json feature_files = RunFeatureFileChecksums(options, engine, manifest.features);
+    const double checksum_s = checksum_watch.ElapsedMs() / 1e3;
     SetRunConfiguration(ReadJsonFile(args->config),
                         options.engine_config.empty() ? nlohmann::json()
                                                       : ReadJsonFile(options.engine_config),
-                        DatasetIdentityRead(options, sessions, args->allow_unordered),
-                        DUSKMAP_VERSION, &manifest);
+                        dataset_identity, feature_files, DUSKMAP_VERSION, &manifest);
     CheckOutputFolder(output, *args, manifest);
     CreateFolder(output.string());
     // Held until the process ends: a second run into this folder is refused.
@@ -230,6 +239,11 @@ RunFn SetupRun(CLI::App& command) {
     const std::map<std::string, int64_t> frames = FramesPerJob(plan, options, sessions);
     int64_t total_frames = 0;
     for (const auto& [id, n] : frames) total_frames += n;
+    // (Said once the run is accepted: a refusal stays one line.)
+    std::cout << "dataset: " << dataset_identity["files"].get<int64_t>() << " files, " << std::fixed
+              << std::setprecision(2) << dataset_identity["bytes"].get<double>() / 1e9
+              << " GB checksummed in " << std::setprecision(1) << checksum_s << " s\n"
+              << std::defaultfloat;
     std::cout << "duskmap run: " << plan.jobs.size() << " jobs (" << total_frames
               << " frame passes), " << jobs << " at once, results in " << output.string()
               << (shard_count > 1 ? ", shard " + args->shard : std::string()) << "\n"
@@ -258,7 +272,8 @@ RunFn SetupRun(CLI::App& command) {
     if (!args->feature_cache.empty()) {
       shared_cache.folder = args->feature_cache;
       shared_cache.program_id = ProgramChecksum();
-      shared_cache.dataset_identity = DatasetIdentityRead(options, sessions, args->allow_unordered);
+      shared_cache.dataset_identity = dataset_identity;
+      shared_cache.file_checksums = feature_files;
     }
     EngineJobExecutor executor(options, engine, *dataset, output, shared_cache);
     JobRunnerOptions runner;

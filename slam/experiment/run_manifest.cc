@@ -106,11 +106,13 @@ RunManifest ReadRunManifest(const fs::path& results_dir) {
 }
 
 void SetRunConfiguration(const nlohmann::json& experiment, const nlohmann::json& engine,
-                         const nlohmann::json& dataset_identity, const std::string& version,
+                         const nlohmann::json& dataset_identity,
+                         const nlohmann::json& feature_files, const std::string& version,
                          RunManifest* manifest) {
   manifest->configuration = {{"experiment", experiment},
                              {"engine", engine},
                              {"dataset", dataset_identity},
+                             {"feature_files", feature_files},
                              {"duskmap", version}};
   const std::string text = manifest->configuration.dump();
   manifest->configuration_checksum = Checksum64Hex(text.data(), text.size());
@@ -152,6 +154,32 @@ std::string DifferenceAt(const std::string& path, const nlohmann::json& earlier,
          ", now " + ShortDump(now) + ")";
 }
 
+// What changed, in words, when the first difference lies in the data rather
+// than in a setting: a session's files (the dataset identity's content
+// checksums) or a model or h5 file; "" otherwise.
+std::string ChangedData(const std::string& difference) {
+  const auto starts = [&difference](const std::string& prefix) {
+    return difference.rfind(prefix, 0) == 0;
+  };
+  const std::string session_prefix = "dataset.content.sessions.";
+  if (starts(session_prefix)) {
+    const size_t end = difference.find(" (", session_prefix.size());
+    return "the files of session " +
+           difference.substr(session_prefix.size(), end - session_prefix.size()) +
+           " (images, depth maps or metadata) changed";
+  }
+  if (starts("dataset.content.shared")) {
+    return "the dataset's files that no one session owns (such as manifest.json) changed";
+  }
+  const std::string file_prefix = "feature_files.";
+  if (starts(file_prefix)) {
+    const size_t end = difference.find(" (", file_prefix.size());
+    return "the feature file " + difference.substr(file_prefix.size(), end - file_prefix.size()) +
+           " changed";
+  }
+  return "";
+}
+
 }  // namespace
 
 std::string FirstJsonDifference(const nlohmann::json& earlier, const nlohmann::json& now) {
@@ -171,6 +199,10 @@ void CheckResumable(const RunManifest& earlier, const RunManifest& now, const fs
   if (earlier.configuration_checksum == now.configuration_checksum) return;
   std::string difference = FirstJsonDifference(earlier.configuration, now.configuration);
   if (difference.empty()) difference = "the recorded checksum";
+  const std::string changed = ChangedData(difference);
+  SLAM_THROW_IF_NOT(ConfigError, changed.empty())
+      << path << ": " << changed << " since the earlier run (first at " << difference
+      << "); resuming would mix results from the old and new data (--overwrite redoes it)";
   SLAM_THROW(ConfigError) << path << ": the earlier run had another configuration, first at "
                           << difference << "; resuming would mix results (--overwrite redoes it)";
 }

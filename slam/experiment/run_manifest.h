@@ -40,10 +40,13 @@ struct RunManifest {
 
 // The `configuration` record of a run: {"experiment": <config JSON>,
 // "engine": <engine config JSON, or null for the paper defaults>,
-// "dataset": <identity>, "duskmap": <version>} and its checksum into
-// manifest->configuration_checksum.
+// "dataset": <identity, with its sessions' content checksums>,
+// "feature_files": <{path: checksum} of the model and h5 files the columns
+// read (RunFeatureFileChecksums)>, "duskmap": <version>} and its checksum
+// into manifest->configuration_checksum.
 void SetRunConfiguration(const nlohmann::json& experiment, const nlohmann::json& engine,
-                         const nlohmann::json& dataset_identity, const std::string& version,
+                         const nlohmann::json& dataset_identity,
+                         const nlohmann::json& feature_files, const std::string& version,
                          RunManifest* manifest);
 
 // The first place where two JSON values differ, as "key.path[2].key (earlier
@@ -54,6 +57,9 @@ std::string FirstJsonDifference(const nlohmann::json& earlier, const nlohmann::j
 // Throws ConfigError naming run.json when `earlier` (the folder's manifest)
 // cannot be resumed by `now`: other features, sessions or shard, or another
 // configuration (the first differing key named), or no configuration record.
+// Changed data is said in words: "the files of session A (images, depth maps
+// or metadata) changed since the earlier run" (one of them rewritten, even
+// with the same size), the shared files, or "the feature file X changed".
 void CheckResumable(const RunManifest& earlier, const RunManifest& now,
                     const std::filesystem::path& results_dir);
 

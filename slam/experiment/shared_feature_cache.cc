@@ -9,44 +9,19 @@
 
 #include "slam/core/check.h"
 #include "slam/core/checksum.h"
+#include "slam/datasets/dataset_identity.h"
 #include "slam/core/system_error.h"
 #include "slam/core/json_reader.h"
 #include "slam/features/feature_options_json.h"
 #include "slam/experiment/feature_cache.h"
+#include "slam/experiment/feature_files.h"
 
 namespace duskmap {
 namespace fs = std::filesystem;
 namespace {
 
 // Bumped when the entry layout or the key's meaning changes.
-constexpr const char* kEntryFormat = "duskmap-shared-feature-cache-1";
-
-// Size and modification time of the files a feature type reads besides the
-// images (an ONNX model, an h5 file or a folder of them): a replaced model
-// or file is another key.
-nlohmann::json ReadFilesOf(const FeatureOptions& features) {
-  std::vector<std::string> paths;
-  if (features.type == "onnx") paths.push_back(features.onnx.model_path);
-  if (features.type == "superpoint") paths.push_back(features.superpoint.model_path);
-  if (features.type == "h5") paths.push_back(features.h5.path);
-  nlohmann::json files = nlohmann::json::object();
-  auto describe = [&](const fs::path& path) {
-    std::error_code ec;
-    const auto size = fs::file_size(path, ec);
-    const auto time = fs::last_write_time(path, ec);
-    files[path.string()] = {{"bytes", ec ? -1 : static_cast<int64_t>(size)},
-                            {"mtime", ec ? 0 : static_cast<int64_t>(time.time_since_epoch().count())}};
-  };
-  for (const std::string& path : paths) {
-    std::error_code ec;
-    if (fs::is_directory(path, ec)) {
-      for (const fs::directory_entry& entry : fs::directory_iterator(path, ec)) describe(entry.path());
-    } else {
-      describe(path);
-    }
-  }
-  return files;
-}
+constexpr const char* kEntryFormat = "duskmap-shared-feature-cache-2";
 
 // Reads the whole cache file; its frame count, or nullopt when it is damaged.
 std::optional<int64_t> FramesIn(const fs::path& file) {
@@ -105,15 +80,30 @@ SharedFeatureCache::SharedFeatureCache(SharedFeatureCacheOptions options)
       << (ec ? ec.message() : "not a folder") << ")";
 }
 
+nlohmann::json SharedFeatureCache::FileChecksumsOf(const FeatureCacheInputs& inputs) const {
+  std::vector<std::string> paths = FeatureFilesOf(inputs.features);
+  std::error_code error;
+  if (inputs.features.type == "h5" && fs::is_directory(inputs.features.h5.path, error)) {
+    // A folder holds one "<session>.h5" per session; a session reads its own.
+    paths = {(fs::path(inputs.features.h5.path) / (inputs.session + ".h5")).string()};
+  }
+  nlohmann::json checksums = nlohmann::json::object();
+  for (const std::string& path : paths) {
+    const auto known = options_.file_checksums.find(path);
+    checksums[path] = known != options_.file_checksums.end() ? *known : FileChecksums({path})[path];
+  }
+  return checksums;
+}
+
 std::string SharedFeatureCache::KeyOf(const FeatureCacheInputs& inputs) const {
   const nlohmann::json key = {
       {"format", kEntryFormat},
       {"program", options_.program_id},
-      {"dataset", options_.dataset_identity},
+      {"dataset", SessionIdentity(options_.dataset_identity, inputs.session)},
       {"session", inputs.session},
       {"extractor", inputs.cache_name},
       {"features", ToJsonObject(inputs.features)},
-      {"files", ReadFilesOf(inputs.features)},
+      {"files", FileChecksumsOf(inputs)},
       {"frame_step", inputs.frame_step},
       {"max_frames_per_session", inputs.max_frames_per_session}};
   const std::string text = key.dump();  // keys sorted: one text per content

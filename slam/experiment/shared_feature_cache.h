@@ -4,11 +4,16 @@
 //
 // An entry's key is a checksum of everything that shapes a feature cache: the
 // entry format, the program (a checksum of the duskmap executable, so a
-// rebuilt program never reuses another build's features), the dataset's
-// identity (datasets/dataset_identity.h: its format, sessions, metadata bytes
-// and every file's path and size), the session, the column's extractor and
-// every feature option, and the frame selection (frame_step,
-// max_frames_per_session). An entry is a folder <DIR>/<key>/ holding the
+// rebuilt program never reuses another build's features), the part of the
+// dataset's identity the session depends on (datasets/dataset_identity.h:
+// the format, the content checksum of the session's files, images and depth
+// maps included, and of the files no session owns, such as manifest.json),
+// the session, the column's extractor and every feature option, the content
+// checksum of a model or h5 file the type reads (experiment/feature_files.h),
+// and the frame selection (frame_step, max_frames_per_session). So an image,
+// model or h5 file changed in place, even with the same size and time, is
+// another key: its session's features are extracted again, the other
+// sessions' entries still serve. An entry is a folder <DIR>/<key>/ holding the
 // cache file and the extract job's summary. Entries are written whole (a
 // partial folder renamed into place) and read whole before use: a damaged or
 // half-written entry is a miss, removed and replaced by the extraction.
@@ -29,6 +34,10 @@ struct SharedFeatureCacheOptions {
   std::filesystem::path folder;
   std::string program_id;           // e.g. a checksum of the executable
   nlohmann::json dataset_identity;  // DatasetIdentity (+ how it was read)
+  // {path: checksum} of the model and h5 files, as the run computed them
+  // once (RunFeatureFileChecksums); a path not listed is checksummed when a
+  // key needs it.
+  nlohmann::json file_checksums = nlohmann::json::object();
 };
 
 // What one extract job's features depend on.
@@ -61,6 +70,9 @@ class SharedFeatureCache {
   static constexpr const char* kSummaryFile = "summary.json";
 
  private:
+  // {path: checksum} of the files the inputs' feature type reads.
+  nlohmann::json FileChecksumsOf(const FeatureCacheInputs& inputs) const;
+
   SharedFeatureCacheOptions options_;
 };
 

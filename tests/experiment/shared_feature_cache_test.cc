@@ -43,7 +43,10 @@ SharedFeatureCacheOptions Options(const std::string& dir) {
   SharedFeatureCacheOptions o;
   o.folder = dir + "/cache";
   o.program_id = "program-1";
-  o.dataset_identity = {{"format", "synthetic"}, {"checksum", "abc"}};
+  o.dataset_identity = {
+      {"format", "synthetic"},
+      {"sessions", {{{"name", "1"}, {"frames", 3}}, {{"name", "2"}, {"frames", 3}}}},
+      {"content", {{"shared", "abc"}, {"sessions", {{"1", "111"}, {"2", "222"}}}}}};
   return o;
 }
 
@@ -72,17 +75,69 @@ TEST(SharedFeatureCacheTest, EveryInputThatShapesFeaturesChangesTheKey) {
   SharedFeatureCacheOptions other_program = Options(dir);
   other_program.program_id = "program-2";
   EXPECT_NE(SharedFeatureCache(other_program).KeyOf(Inputs()), key);
-  SharedFeatureCacheOptions other_data = Options(dir);
-  other_data.dataset_identity["checksum"] = "abd";
-  EXPECT_NE(SharedFeatureCache(other_data).KeyOf(Inputs()), key);
-  // A feature type that reads a model: the model file's size is part of the key.
+  // The session's own content checksum and the shared one are part of the
+  // key; another session's are not (its change re-extracts only itself).
+  SharedFeatureCacheOptions own_changed = Options(dir);
+  own_changed.dataset_identity["content"]["sessions"]["1"] = "112";
+  EXPECT_NE(SharedFeatureCache(own_changed).KeyOf(Inputs()), key);
+  SharedFeatureCacheOptions shared_changed = Options(dir);
+  shared_changed.dataset_identity["content"]["shared"] = "abd";
+  EXPECT_NE(SharedFeatureCache(shared_changed).KeyOf(Inputs()), key);
+  SharedFeatureCacheOptions other_changed = Options(dir);
+  other_changed.dataset_identity["content"]["sessions"]["2"] = "223";
+  other_changed.dataset_identity["sessions"][1]["frames"] = 4;
+  EXPECT_EQ(SharedFeatureCache(other_changed).KeyOf(Inputs()), key);
+  fs::remove_all(dir);
+}
+
+// Rewrites `path` with `bytes` and gives it back its earlier modification
+// time: only the content says it changed.
+void RewriteKeepingTime(const fs::path& path, const std::string& bytes) {
+  const fs::file_time_type time = fs::last_write_time(path);
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+  fs::last_write_time(path, time);
+}
+
+// An ONNX model or an h5 file rewritten in place with the same size and time
+// is another key (not reused); unchanged, the key stays (reused). An h5
+// folder's per-session files key their own session only. A checksum the run
+// computed once is used as given.
+TEST(SharedFeatureCacheTest, ModelAndH5FilesKeyByContent) {
+  const std::string dir = testing::ProcessTempDir("shared_cache_files");
+  const SharedFeatureCache cache(Options(dir));
   FeatureCacheInputs onnx = Inputs();
   onnx.features.type = "onnx";
   onnx.features.onnx.model_path = dir + "/model.onnx";
-  std::ofstream(onnx.features.onnx.model_path) << "one";
+  std::ofstream(onnx.features.onnx.model_path) << "model one";
   const std::string before = cache.KeyOf(onnx);
-  std::ofstream(onnx.features.onnx.model_path) << "another model";
+  EXPECT_EQ(cache.KeyOf(onnx), before);
+  RewriteKeepingTime(onnx.features.onnx.model_path, "model two");
   EXPECT_NE(cache.KeyOf(onnx), before);
+  RewriteKeepingTime(onnx.features.onnx.model_path, "model one");
+  EXPECT_EQ(cache.KeyOf(onnx), before) << "the same bytes again: the entry serves again";
+  SharedFeatureCacheOptions given = Options(dir);
+  given.file_checksums = {{onnx.features.onnx.model_path, "0123456789abcdef"}};
+  EXPECT_NE(SharedFeatureCache(given).KeyOf(onnx), before);
+
+  FeatureCacheInputs h5 = Inputs();
+  h5.features.type = "h5";
+  h5.features.h5.path = dir + "/features.h5";
+  std::ofstream(h5.features.h5.path) << "h5 bytes A";
+  const std::string h5_before = cache.KeyOf(h5);
+  RewriteKeepingTime(h5.features.h5.path, "h5 bytes B");
+  EXPECT_NE(cache.KeyOf(h5), h5_before);
+
+  FeatureCacheInputs folder = Inputs();  // session "1"
+  folder.features.type = "h5";
+  folder.features.h5.path = dir + "/per_session";
+  fs::create_directories(folder.features.h5.path);
+  std::ofstream(folder.features.h5.path + "/1.h5") << "session one";
+  std::ofstream(folder.features.h5.path + "/2.h5") << "session two";
+  const std::string folder_before = cache.KeyOf(folder);
+  RewriteKeepingTime(folder.features.h5.path + "/2.h5", "session 2!!");
+  EXPECT_EQ(cache.KeyOf(folder), folder_before);
+  RewriteKeepingTime(folder.features.h5.path + "/1.h5", "session 1!!");
+  EXPECT_NE(cache.KeyOf(folder), folder_before);
   fs::remove_all(dir);
 }
 
