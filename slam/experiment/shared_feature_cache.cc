@@ -9,12 +9,12 @@
 
 #include "slam/core/check.h"
 #include "slam/core/checksum.h"
-#include "slam/datasets/dataset_identity.h"
-#include "slam/core/system_error.h"
 #include "slam/core/json_reader.h"
-#include "slam/features/feature_options_json.h"
+#include "slam/core/system_error.h"
+#include "slam/datasets/dataset_identity.h"
 #include "slam/experiment/feature_cache.h"
 #include "slam/experiment/feature_files.h"
+#include "slam/features/feature_options_json.h"
 
 namespace duskmap {
 namespace fs = std::filesystem;
