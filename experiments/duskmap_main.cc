@@ -1,12 +1,16 @@
 // The `duskmap` command-line program: one binary, one subcommand per job.
 #include <malloc.h>
+#include <stdlib.h>
 
+#include <cstdlib>
 #include <exception>
 #include <iostream>
 #include <map>
+#include <string>
 
 #include "experiments/command_registry.h"
 #include "slam/core/check.h"
+#include "slam/io/publish.h"
 
 namespace {
 
@@ -23,10 +27,31 @@ void KeepFreedHeapMemory() {
   mallopt(M_TOP_PAD, 256 << 20);        // grow the heap 256 MiB at a time
 }
 
+// Test-only (tests/cli): DUSKMAP_TEST_BEFORE_PUBLISH holds a shell command
+// run right before each output is given its final name, with
+// DUSKMAP_PUBLISH_PATH set to that name, so that a test can make a file
+// appear there mid-run. The variable is removed first: the commands it runs
+// (another duskmap) do not run it again. Its exit status is ignored.
+void InstallTestPublishHook() {
+  const char* command = std::getenv("DUSKMAP_TEST_BEFORE_PUBLISH");
+  if (command == nullptr || *command == '\0') return;
+  const std::string text = command;
+  ::unsetenv("DUSKMAP_TEST_BEFORE_PUBLISH");
+  duskmap::SetBeforePublishHookForTesting([text](const std::string& path) {
+    std::string quoted = "'";
+    for (const char c : path) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    quoted += "'";
+    const std::string script = "DUSKMAP_PUBLISH_PATH=" + quoted +
+                               "; export DUSKMAP_PUBLISH_PATH; " + text;
+    [[maybe_unused]] const int status = std::system(script.c_str());
+  });
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   KeepFreedHeapMemory();
+  InstallTestPublishHook();
   using duskmap::cli::RunFn;
   CLI::App app{
       "duskmap: benchmark and evaluation harness for illumination-invariant visual "

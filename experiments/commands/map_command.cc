@@ -93,7 +93,12 @@ RunFn SetupMap(CLI::App& command) {
     read.allow_unordered = args->allow_unordered;
     const auto dataset = OpenDataset(args->dataset, args->format, read);
     const MappingRun run = BuildMap(*dataset, args->sessions, options);
-    SaveMap(run.map, args->output);
+    // Checked again as it is saved: a file that appeared at --output while
+    // the map was built is never replaced without --overwrite.
+    MapSaveOptions save;
+    save.overwrite = args->overwrite;
+    save.flag = "--output";
+    SaveMap(run.map, args->output, save);
     nlohmann::json summary = ToJsonObject(SummarizeMap(run.map));
     summary["frames"] = run.frames.size();
     summary["wall_s"] = run.wall_s;

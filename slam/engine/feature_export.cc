@@ -11,7 +11,7 @@
 #include "slam/core/timer.h"
 #include "slam/features/feature_extractor.h"
 #include "slam/features/h5_feature_file.h"
-#include "slam/io/output_safety.h"
+#include "slam/io/publish.h"
 
 namespace duskmap {
 namespace fs = std::filesystem;
@@ -74,8 +74,13 @@ FeatureExportSummary ExportFeatures(
     }
   };
   if (write_h5) {
-    // Written beside the output and renamed onto it once complete.
-    WriteFileAtomicallyAt(options.output_path, [&](const std::string& partial) {
+    // Written beside the output and published once complete.
+    const PublishTarget target{{"--output", options.output_path},
+                               options.overwrite,
+                               {"a duskmap feature export", [](const fs::path& p) {
+                                  return IsDuskmapFeatureExport(p.string());
+                                }}};
+    WriteAndPublishAt(target, [&](const std::string& partial) {
       H5FeatureFile file(partial, H5FeatureFile::Mode::kCreate);
       file.WriteAttribute(kFeatureExportAttribute, features.type);
       export_sessions(&file);
@@ -86,7 +91,12 @@ FeatureExportSummary ExportFeatures(
     export_sessions(nullptr);
   }
   if (!options.image_list_path.empty()) {
-    WriteFileAtomically(options.image_list_path, [&](std::ostream& out) { out << list.str(); });
+    const PublishTarget target{{"--image-list", options.image_list_path},
+                               options.overwrite,
+                               {"a file (image lists are plain text)", [](const fs::path& p) {
+                                  return fs::is_regular_file(p);
+                                }}};
+    WriteAndPublish(target, [&](std::ostream& out) { out << list.str(); });
   }
   if (summary.frames > 0 && write_h5) {
     summary.mean_features = features_sum / static_cast<double>(summary.frames);

@@ -20,6 +20,11 @@ struct FeatureExportOptions {
   std::vector<std::string> sessions;  // in this order; empty = every session of the dataset
   std::string output_path;            // the .h5 to write; empty = none (image list only)
   std::string image_list_path;        // "<group name>\t<absolute image file>" per frame; empty = none
+  // false: an output is published only while its name is free (a file that
+  // appeared there while the export ran is left as it was and the export
+  // fails); true: an earlier export (and any image list) is replaced, tested
+  // right before the replace (io/publish.h).
+  bool overwrite = false;
   void Check() const;                 // at least one output
 };
 

@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "slam/core/check.h"
+#include "slam/io/publish.h"
 
 namespace duskmap {
 namespace fs = std::filesystem;
@@ -27,13 +28,17 @@ StagedFolder::StagedFolder(const std::string& final_path, bool overwrite, const 
   const fs::path cwd = fs::current_path(error);
   SLAM_THROW_IF_NOT(InputError, error || !IsSameOrInside(cwd, final_path_))
       << final_path << ": is the current folder or one of its parents; choose another output";
+  // What a killed run left beside the output: its staging folder, and an
+  // old folder it had moved aside (put back when the new one never came).
+  RemoveStaleSiblings(final_path_, "tmp");
+  RecoverStaleAside(final_path_);
   CheckMayReplace({"--output", final_path_}, overwrite, owner);
   fs::path parent = fs::path(final_path_).parent_path();
   if (parent.empty()) parent = ".";
   CreateFolder(parent.string());
   SLAM_THROW_IF_NOT(InputError, ::access(parent.c_str(), W_OK) == 0)
       << parent.string() << ": output folder is not writable";
-  staging_path_ = final_path_ + ".tmp-" + std::to_string(::getpid());
+  staging_path_ = TemporarySiblingOf(final_path_, "tmp");
   fs::remove_all(staging_path_, error);
   CreateFolder(staging_path_);
 }
@@ -46,27 +51,11 @@ StagedFolder::~StagedFolder() {
 
 void StagedFolder::Commit() {
   SLAM_CHECK(!committed_);
-  // Checked again: something may have appeared at the path while we wrote.
-  CheckMayReplace({"--output", final_path_}, overwrite_, owner_);
-  std::error_code error;
-  const std::string old_path = final_path_ + ".old-" + std::to_string(::getpid());
-  const bool had_old = fs::exists(fs::symlink_status(final_path_, error));
-  if (had_old) {
-    fs::remove_all(old_path, error);
-    fs::rename(final_path_, old_path, error);
-    SLAM_THROW_IF_NOT(InputError, !error)
-        << final_path_ << ": cannot move the old folder aside (" << error.message() << ")";
-  }
-  fs::rename(staging_path_, final_path_, error);
-  if (error) {
-    std::error_code restore;
-    if (had_old) fs::rename(old_path, final_path_, restore);
-    SLAM_THROW(InputError) << final_path_ << ": cannot rename " << staging_path_
-                           << " into place (" << error.message() << "); the old folder is "
-                           << (had_old && !restore ? "unchanged" : "at " + old_path);
-  }
+  // Without overwrite_ the final name is taken only while it is free; with
+  // it, what is there is tested again (moved aside first) right before the
+  // replace (io/publish.h).
+  PublishFolder(staging_path_, {{"--output", final_path_}, overwrite_, owner_});
   committed_ = true;
-  if (had_old) fs::remove_all(old_path, error);
 }
 
 }  // namespace duskmap

@@ -11,8 +11,9 @@ namespace duskmap {
 
 class StagedFolder {
  public:
-  // Checks that `final_path` may be written and creates the temporary sibling
-  // "<final>.tmp-<pid>". An existing `final_path` may be replaced only with
+  // Checks that `final_path` may be written, removes the staging and old
+  // folders of killed runs beside it (RemoveStaleSiblings) and creates the
+  // temporary sibling "<final>.tmp-<pid>-<n>". An existing `final_path` may be replaced only with
   // `overwrite` and only when `owner` recognises it (CheckMayReplace); the
   // current folder and its parents are never replaced. Throws InputError
   // naming the path otherwise, or when the parent folder is not writable.
@@ -24,9 +25,11 @@ class StagedFolder {
 
   const std::string& staging_path() const { return staging_path_; }
   const std::string& final_path() const { return final_path_; }
-  // Puts the staging folder in place of final_path. An old folder is first
-  // renamed aside ("<final>.old-<pid>"), then removed once the new one is in
-  // place; if the swap fails the old folder is put back.
+  // Puts the staging folder in place of final_path (PublishFolder): without
+  // `overwrite` only while the name is free, so a folder that appeared
+  // meanwhile is never replaced; with it, an old folder is renamed aside
+  // ("<final>.old-<pid>-<n>"), tested by `owner`, and removed once the new
+  // one is in place; if it is not owned or the swap fails it is put back.
   void Commit();
 
  private:

@@ -14,6 +14,7 @@
 
 #include "slam/core/check.h"
 #include "slam/core/json_reader.h"
+#include "slam/io/publish.h"
 #include "slam/io/synthetic_dataset.h"
 
 namespace duskmap {
@@ -146,51 +147,11 @@ FolderLock::~FolderLock() {
 
 void WriteFileAtomicallyAt(const std::string& path,
                            const std::function<void(const std::string& partial_path)>& write) {
-  const std::string partial = path + ".partial-" + std::to_string(::getpid());
-  try {
-    write(partial);
-  } catch (...) {
-    std::remove(partial.c_str());
-    throw;
-  }
-  int failure = 0;
-  const int fd = ::open(partial.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) {
-    failure = errno;
-  } else {
-    if (::fsync(fd) != 0) failure = errno;
-    ::close(fd);
-  }
-  if (failure == 0 && std::rename(partial.c_str(), path.c_str()) != 0) failure = errno;
-  if (failure != 0) {
-    std::remove(partial.c_str());
-    SLAM_THROW(InputError) << path << ": cannot write: " << std::strerror(failure)
-                           << " (nothing was changed)";
-  }
+  WriteAndPublishAt(ReplaceAnyFile(path), write);
 }
 
 void WriteFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
-  std::ostringstream buffer;
-  write(buffer);
-  SLAM_THROW_IF_NOT(InputError, buffer.good()) << path << ": cannot format the output";
-  const std::string bytes = buffer.str();
-  WriteFileAtomicallyAt(path, [&](const std::string& partial) {
-    const int fd = ::open(partial.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    SLAM_THROW_IF_NOT(InputError, fd >= 0) << path << ": cannot write: " << std::strerror(errno);
-    int failure = 0;
-    for (size_t done = 0; done < bytes.size() && failure == 0;) {
-      const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) {
-        failure = n < 0 ? errno : EIO;
-      } else {
-        done += static_cast<size_t>(n);
-      }
-    }
-    if (::close(fd) != 0 && failure == 0) failure = errno;
-    SLAM_THROW_IF_NOT(InputError, failure == 0)
-        << path << ": cannot write: " << std::strerror(failure) << " (nothing was changed)";
-  });
+  WriteAndPublish(ReplaceAnyFile(path), write);
 }
 
 }  // namespace duskmap

@@ -10,7 +10,8 @@
 // - A results folder is locked while a process writes it.
 // - A file is written beside its final path and renamed onto it when
 //   complete: a failed write leaves the old file (or none), never a
-//   truncated one.
+//   truncated one. Without --overwrite the final name is taken only if it
+//   is still free (io/publish.h), so nothing that appears meanwhile is lost.
 #pragma once
 
 #include <filesystem>
@@ -79,11 +80,13 @@ class FolderLock {
   int fd_ = -1;
 };
 
-// Writes `path` through `write` into "<path>.partial-<pid>", flushes it to
-// disk and renames it onto `path`. On any failure (the stream's error state,
-// a full disk, an exception from `write`) the partial file is removed and
-// InputError names `path` and the system's reason; an existing file at
-// `path` is left as it was.
+// Writes `path` through `write` into "<path>.partial-<pid>-<n>", flushes it to
+// disk and renames it onto `path`, replacing any file there (io/publish.h:
+// WriteAndPublish with ReplaceAnyFile; user-named outputs that --overwrite
+// guards are published with their own PublishTarget). On any failure (the
+// stream's error state, a full disk, an exception from `write`) the partial
+// file is removed and InputError names `path` and the system's reason; an
+// existing file at `path` is left as it was.
 void WriteFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 
 // The same for writers that need a file name (HDF5): `write` creates and

@@ -19,6 +19,7 @@
 #include "slam/core/check.h"
 #include "slam/core/checksum.h"
 #include "slam/core/input_file.h"
+#include "slam/io/publish.h"
 #include "slam/map/map_codec.h"
 #include "slam/map/shared_rows.h"
 #include "slam/map/table_checksums.h"
@@ -523,9 +524,12 @@ void SaveMap(const Map& map, const std::string& path, const MapSaveOptions& opti
         << path << ": node " << id
         << " has no keypoint responses (a map loaded for localization); it cannot be saved";
   }
-  const std::string temp = path + ".saving";
-  SLAM_THROW_IF_NOT(InputError, std::remove(temp.c_str()) == 0 || errno == ENOENT)
-      << temp << ": cannot remove a stale temporary file: " << std::strerror(errno);
+  // A killed save's temporary file (its process gone) and the fixed name
+  // older versions used are removed; this save's own name is unique, so two
+  // processes saving to one path never write the same temporary file.
+  RemoveStaleSiblings(path, "saving");
+  std::remove((path + ".saving").c_str());
+  const std::string temp = TemporarySiblingOf(path, "saving");
   // A failed save (a full disk, an unwritable folder) leaves the previous
   // file as it was and no temporary file.
   try {
@@ -550,12 +554,18 @@ void SaveMap(const Map& map, const std::string& path, const MapSaveOptions& opti
     reached(MapSaveStep::kCommitted);
     FsyncPath(temp, /*directory=*/false);
     reached(MapSaveStep::kFlushed);
-    SLAM_THROW_IF_NOT(InputError, std::rename(temp.c_str(), path.c_str()) == 0)
-        << path << ": cannot replace the map file: " << std::strerror(errno);
   } catch (const Error&) {
     std::remove(temp.c_str());
     throw;
   }
+  // Without overwrite the name is taken only while it is free; with it, only
+  // a duskmap map is replaced (tested right before the rename). PublishFile
+  // removes the temporary file when it fails.
+  PublishFile(temp, {{options.flag, path},
+                     options.overwrite,
+                     {"a duskmap map", [](const std::filesystem::path& p) {
+                        return IsDuskmapMapFile(p.string());
+                      }}});
   FsyncPath(DirectoryOf(path), /*directory=*/true);
   reached(MapSaveStep::kRenamed);
 }

@@ -8,9 +8,11 @@
 // MapWords::index_problem, and the vocabulary builds the index again.
 //
 // Saving is transactional at the file level: the map is written to
-// "<path>.saving", flushed to disk (fsync), then renamed over <path> and the
-// directory flushed, so a process killed during a save leaves the previous
-// file intact (rename is atomic on POSIX file systems).
+// "<path>.saving-<pid>-<n>", flushed to disk (fsync), then published at <path>
+// (io/publish.h: renamed over a duskmap map, or, without overwrite, given the
+// name only while it is free) and the directory flushed, so a process killed
+// during a save leaves the previous file intact (rename is atomic on POSIX
+// file systems) and a file that appears at <path> meanwhile is not replaced.
 //
 // Loading checks, with one-line InputError messages naming the file: that it
 // exists and is an SQLite file, that it is not truncated (the header's page
@@ -56,19 +58,26 @@ struct MapLoadOptions {
 // `--overwrite` may replace.
 bool IsDuskmapMapFile(const std::string& path);
 
-// The steps of a save, in order: the temporary file "<path>.saving" is
-// created and its transaction begun, its tables written, the transaction
-// committed, the file flushed to disk, renamed onto `path`.
+// The steps of a save, in order: the temporary file "<path>.saving-<pid>-<n>"
+// is created and its transaction begun, its tables written, the transaction
+// committed, the file flushed to disk, published at `path`.
 enum class MapSaveStep { kTemporaryCreated, kTablesWritten, kCommitted, kFlushed, kRenamed };
 
 struct MapSaveOptions {
   // Called after each step (tests: a process killed at a chosen step).
   std::function<void(MapSaveStep)> after_step;
+  // true: a duskmap map at `path` is replaced (anything else is refused);
+  // false: the save fails when any file is at `path` when it is published,
+  // one that appeared while the map was built included, and leaves it as it
+  // was (`duskmap map` without --overwrite).
+  bool overwrite = true;
+  std::string flag = "map";  // what named the path, for messages ("--output")
 };
 
-// Throws InputError naming the path when the file cannot be written. A save
-// that fails or is killed at any step leaves the previous file at `path` (or
-// none) and at most a stale "<path>.saving", which the next save removes.
+// Throws InputError naming the path when the file cannot be written or may
+// not be replaced. A save that fails or is killed at any step leaves the
+// previous file at `path` (or none) and at most a stale temporary file of a
+// killed process, which the next save to `path` removes.
 void SaveMap(const Map& map, const std::string& path, const MapSaveOptions& options = {});
 
 Map LoadMap(const std::string& path, const MapLoadOptions& options = MapLoadOptions());

@@ -1,6 +1,7 @@
 #include "slam/io/folder_commit.h"
 
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -95,6 +96,28 @@ TEST(StagedFolder, OverwriteRefusesWhatDuskmapDidNotWrite) {
   std::ofstream(file_path) << "notes";
   EXPECT_THROW(StagedFolder(file_path, true, OwnedDataset()), InputError);
   EXPECT_TRUE(fs::is_regular_file(file_path));
+}
+
+// A run killed while it wrote (its process gone) left its staging folder:
+// the next staged write of the same output removes it; a live process's is
+// kept.
+TEST(StagedFolder, StagingFolderOfAKilledRunIsRemoved) {
+  const fs::path root = ProcessTempDir("commit_stale");
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  const fs::path stale = root / ("out.tmp-" + std::to_string(child));
+  const fs::path live = root / ("out.tmp-" + std::to_string(::getppid()) + "-0");
+  fs::create_directories(stale / "half");
+  fs::create_directories(live);
+  {
+    StagedFolder staged((root / "out").string(), false, OwnedDataset());
+    EXPECT_FALSE(fs::exists(stale));
+    EXPECT_TRUE(fs::exists(live));
+    staged.Commit();
+  }
+  EXPECT_TRUE(fs::is_directory(root / "out"));
 }
 
 TEST(StagedFolder, NeverReplacesTheCurrentFolderOrItsParents) {

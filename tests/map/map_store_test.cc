@@ -7,7 +7,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <random>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -103,6 +106,16 @@ class MapStoreTest : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
+  // The temporary files of saves beside the map ("map.db.saving-<pid>-<n>").
+  std::vector<std::string> Temporaries() const {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(dir_)) {
+      const std::string name = entry.path().filename().string();
+      if (name.rfind("map.db.saving", 0) == 0) names.push_back(name);
+    }
+    return names;
+  }
+
   // Runs an SQL statement on a saved map file (to forge bad inputs); the
   // table checksums then fail.
   void Tamper(const std::string& sql) { testing::ExecuteSql(path_, sql); }
@@ -130,7 +143,7 @@ TEST_F(MapStoreTest, RoundTripFloatAndBinary) {
   for (bool binary : {false, true}) {
     const Map map = testing::MakeTestMap(6, 50, binary);
     SaveMap(map, path_);
-    EXPECT_FALSE(fs::exists(path_ + ".saving"));
+    EXPECT_TRUE(Temporaries().empty());
     ExpectMapsEqual(map, LoadMap(path_));
   }
 }
@@ -146,10 +159,46 @@ TEST_F(MapStoreTest, RoundTripKeepsIdsOfRemovedNodesReserved) {
 
 TEST_F(MapStoreTest, SaveOverwritesAndIgnoresStaleTemporary) {
   SaveMap(testing::MakeTestMap(2), path_);
-  std::ofstream(path_ + ".saving") << "left over by a killed process";
+  std::ofstream(path_ + ".saving") << "left over by an older version";
   const Map second = testing::MakeTestMap(4, 10, false, 99);
   SaveMap(second, path_);
   ExpectMapsEqual(second, LoadMap(path_));
+  EXPECT_TRUE(Temporaries().empty());
+}
+
+// Without overwrite a save takes the name only while it is free: a file
+// that appears at the path while the map is written (another save, the
+// user's notes) is left as it was, and the save fails naming the path.
+TEST_F(MapStoreTest, SaveWithoutOverwriteNeverReplacesAFileThatAppeared) {
+  MapSaveOptions options;
+  options.overwrite = false;
+  options.flag = "--output";
+  options.after_step = [&](MapSaveStep step) {
+    if (step == MapSaveStep::kFlushed) std::ofstream(path_) << "notes";
+  };
+  try {
+    SaveMap(testing::MakeTestMap(2), path_, options);
+    FAIL() << "the save replaced a file that appeared";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(path_ + ": appeared while this command ran (--output)"),
+              std::string::npos)
+        << e.what();
+  }
+  std::ifstream in(path_);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), "notes");
+  EXPECT_TRUE(Temporaries().empty());
+  // With overwrite: a duskmap map is replaced, anything else never.
+  options.overwrite = true;
+  EXPECT_THROW(SaveMap(testing::MakeTestMap(2), path_, options), InputError);
+  std::ifstream again(path_);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(again), {}), "notes");
+  fs::remove(path_);
+  options.after_step = nullptr;
+  SaveMap(testing::MakeTestMap(2), path_, options);
+  const Map second = testing::MakeTestMap(4, 10, false, 99);
+  SaveMap(second, path_, options);
+  ExpectMapsEqual(second, LoadMap(path_));
+  EXPECT_TRUE(Temporaries().empty());
 }
 
 // A process killed (SIGKILL, as by the OOM killer or a user) right after
@@ -182,14 +231,17 @@ TEST_F(MapStoreTest, KillDuringSaveLeavesPreviousMapIntact) {
     ASSERT_EQ(::waitpid(child, &status, 0), child);
     ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) << "status " << status;
     if (step == MapSaveStep::kRenamed) {
-      EXPECT_FALSE(fs::exists(path_ + ".saving"));
+      EXPECT_TRUE(Temporaries().empty());
       ExpectMapsEqual(next, LoadMap(path_));
     } else {
-      EXPECT_TRUE(fs::exists(path_ + ".saving"));  // left behind; the next save removes it
+      // Left behind, named with the killed pid; the next save removes it.
+      const std::vector<std::string> left = Temporaries();
+      ASSERT_EQ(left.size(), 1u);
+      EXPECT_EQ(left[0].rfind("map.db.saving-" + std::to_string(child) + "-", 0), 0u) << left[0];
       ExpectMapsEqual(previous, LoadMap(path_));
     }
     SaveMap(next, path_);
-    EXPECT_FALSE(fs::exists(path_ + ".saving"));
+    EXPECT_TRUE(Temporaries().empty());
     ExpectMapsEqual(next, LoadMap(path_));
   }
 }
