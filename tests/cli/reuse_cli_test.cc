@@ -2,8 +2,10 @@
 // or depth map rewritten in place with the same byte size makes the feature
 // cache kept across runs (--feature-cache) extract that session again (and
 // only it), and makes a `--resume` of an earlier run refuse, naming the
-// session; unchanged data is still restored.
+// session; unchanged data is still restored. An h5 feature file rewritten
+// the same way is not reused either.
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -95,16 +97,19 @@ class ReuseCli : public ::testing::Test {
     return Run(output, "--feature-cache " + (dir_ / "shared_features").string());
   }
   // The extract job's "shared_cache" note: "stored <key>" or "restored <key>".
-  static std::string CacheNote(const std::string& run, const std::string& session) {
+  static std::string CacheNote(const std::string& run, const std::string& session,
+                               const std::string& extractor = "orb") {
     const auto summary = nlohmann::json::parse(
-        std::ifstream(dir_ / run / "jobs" / "extract/orb" / session / "summary.json"));
+        std::ifstream(dir_ / run / "jobs" / "extract" / extractor / session / "summary.json"));
     return summary.value("shared_cache", std::string());
   }
-  static bool Stored(const std::string& run, const std::string& session) {
-    return CacheNote(run, session).rfind("stored ", 0) == 0;
+  static bool Stored(const std::string& run, const std::string& session,
+                     const std::string& extractor = "orb") {
+    return CacheNote(run, session, extractor).rfind("stored ", 0) == 0;
   }
-  static bool Restored(const std::string& run, const std::string& session) {
-    return CacheNote(run, session).rfind("restored ", 0) == 0;
+  static bool Restored(const std::string& run, const std::string& session,
+                       const std::string& extractor = "orb") {
+    return CacheNote(run, session, extractor).rfind("restored ", 0) == 0;
   }
 
   static fs::path dir_;
@@ -160,6 +165,62 @@ TEST_F(ReuseCli, SameSizeImageChangeReExtractsItsSessionAndRefusesAResume) {
   const Result resumed_fourth = RunDuskmap(Cached("fourth") + " --resume");
   EXPECT_EQ(resumed_fourth.exit_code, 0) << resumed_fourth.output;
   EXPECT_NE(resumed_fourth.output.find(": 1 jobs run,"), std::string::npos) << resumed_fourth.output;
+}
+
+// A declared h5 column's file rewritten in place (one descriptor byte changed
+// through h5py, the same size, the modification time put back): the feature
+// cache extracts the column again instead of restoring the old features, and
+// a resume is refused naming the file.
+TEST_F(ReuseCli, SameSizeH5FileChangeIsNotReused) {
+  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  if (std::system((python + " -c 'import h5py, numpy' > /dev/null 2>&1").c_str()) != 0) {
+    GTEST_SKIP() << "python3-h5py is not installed (scripts/setup.sh installs it)";
+  }
+  const fs::path h5 = dir_ / "orb.h5";
+  const Result exported = RunDuskmap("features export --dataset " + (dir_ / "data").string() +
+                                     " --type orb --output " + h5.string());
+  ASSERT_EQ(exported.exit_code, 0) << exported.output;
+  const nlohmann::json experiment = {
+      {"dataset", {{"path", (dir_ / "data").string()}, {"format", "synthetic"}}},
+      {"features", {{{"code", "XO"}, {"type", "h5"}, {"path", h5.string()}, {"descriptor_kind", "binary"}}}},
+      {"maps", {"1"}},
+      {"localization_sessions", {"A"}}};
+  std::ofstream(dir_ / "h5_experiment.json") << experiment.dump(2);
+  const auto run = [&](const std::string& output, const std::string& extra = "") {
+    return RunDuskmap("run " + (dir_ / "h5_experiment.json").string() + " --output " +
+                      (dir_ / output).string() + " --jobs 2 --no-figures --feature-cache " +
+                      (dir_ / "h5_shared_features").string() + " " + extra);
+  };
+  const Result first = run("h5_first");
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  EXPECT_TRUE(Stored("h5_first", "1", "h5-XO") && Stored("h5_first", "A", "h5-XO"));
+  const Result second = run("h5_second");
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  EXPECT_TRUE(Restored("h5_second", "1", "h5-XO") && Restored("h5_second", "A", "h5-XO"));
+
+  const auto size = fs::file_size(h5);
+  std::ofstream(dir_ / "flip.py") << R"(import os, sys, h5py
+path = sys.argv[1]
+times = os.stat(path)
+found = []
+with h5py.File(path, "r+") as f:
+    f.visititems(lambda name, item: found.append(name) if name.endswith("descriptors") and item.size > 0 and not found else None)
+    d = f[found[0]]
+    d[(0,) * d.ndim] = d[(0,) * d.ndim] ^ 1
+os.utime(path, ns=(times.st_atime_ns, times.st_mtime_ns))
+)";
+  ASSERT_EQ(std::system((python + " " + (dir_ / "flip.py").string() + " " + h5.string()).c_str()), 0);
+  ASSERT_EQ(fs::file_size(h5), size) << "the test needs a same-size rewrite";
+
+  const Result third = run("h5_third");
+  ASSERT_EQ(third.exit_code, 0) << third.output;
+  EXPECT_TRUE(Stored("h5_third", "1", "h5-XO")) << CacheNote("h5_third", "1", "h5-XO");
+  EXPECT_TRUE(Stored("h5_third", "A", "h5-XO")) << CacheNote("h5_third", "A", "h5-XO");
+  const Result resumed = run("h5_first", "--resume");
+  EXPECT_EQ(resumed.exit_code, 1) << resumed.output;
+  EXPECT_NE(resumed.output.find("the feature file " + h5.string() + " changed since the earlier run"),
+            std::string::npos)
+      << resumed.output;
 }
 
 }  // namespace
