@@ -9,6 +9,7 @@
 #include "slam/core/json_fields.h"
 #include "slam/experiment/paper_reference.h"
 #include "slam/experiment/report_builder.h"
+#include "slam/io/folder_commit.h"
 #include "slam/io/output_safety.h"
 
 namespace duskmap::cli {
@@ -27,8 +28,44 @@ std::string ShellQuote(const std::string& text) {
   return quoted + "'";
 }
 
-// The report folder is new, empty, or an earlier report (tables.md and
-// cells.csv); it is none of the inputs and does not hold the results.
+// What a report folder holds: WriteReport's files, plot_report.py's
+// report.md and figures/, and the partial files of a write cut short.
+bool IsReportEntry(const std::string& name) {
+  static const char* const kNames[] = {"tables",        "figures",      "tables.md",
+                                       "tables.tex",    "cells.csv",    "timeline.csv",
+                                       "consecutive.csv", "agreement.md", "agreement.json",
+                                       "report.md"};
+  for (const char* known : kNames) {
+    const std::string partial = std::string(known) + ".partial-";
+    if (name == known || name.rfind(partial, 0) == 0) return true;
+  }
+  return false;
+}
+
+// The first entry of `folder` a report does not write; empty when there is
+// none (an empty folder, an earlier report, or one a killed run or a full
+// disk left half-written: all of them the report's to replace).
+std::string ForeignEntry(const fs::path& folder) {
+  std::error_code error;
+  for (fs::directory_iterator it(folder, error), end; !error && it != end; it.increment(error)) {
+    const std::string name = it->path().filename().string();
+    if (!IsReportEntry(name)) return name;
+  }
+  return error ? std::string("(unreadable: ") + error.message() + ")" : std::string();
+}
+
+bool IsReportFolder(const fs::path& path) {
+  std::error_code error;
+  return fs::is_directory(path, error) && ForeignEntry(path).empty();
+}
+
+OwnedOutput OwnedReportFolder() {
+  return {"an earlier report (a folder of tables.md, cells.csv, tables/, figures/, ...)",
+          &IsReportFolder};
+}
+
+// The report folder is new, empty, or an earlier report, complete or not;
+// it is none of the inputs and does not hold the results.
 void CheckReportFolder(const ReportRequest& request) {
   std::vector<NamedPath> inputs = {{"config", request.config_path}};
   for (const fs::path& dir : request.results_dirs) {
@@ -40,14 +77,14 @@ void CheckReportFolder(const ReportRequest& request) {
   }
   CheckOutputsApartFromInputs({{"--output", request.output_dir.string()}}, inputs);
   std::error_code error;
-  if (!fs::exists(request.output_dir, error)) return;
-  const bool report = fs::is_regular_file(request.output_dir / "tables.md", error) &&
-                      fs::is_regular_file(request.output_dir / "cells.csv", error);
-  SLAM_THROW_IF_NOT(InputError, fs::is_directory(request.output_dir, error) &&
-                                    (report || fs::is_empty(request.output_dir, error)))
+  if (!fs::exists(fs::symlink_status(request.output_dir, error))) return;
+  SLAM_THROW_IF_NOT(InputError, fs::is_directory(fs::symlink_status(request.output_dir, error)))
       << request.output_dir.string()
-      << ": exists and is not an earlier report (no tables.md and cells.csv); choose a new or "
-         "empty --output";
+      << ": exists and is not an earlier report (not a folder); choose a new or empty --output";
+  const std::string foreign = ForeignEntry(request.output_dir);
+  SLAM_THROW_IF_NOT(InputError, foreign.empty())
+      << request.output_dir.string() << ": exists and is not an earlier report (it holds "
+      << foreign << ", which a report does not write); choose a new or empty --output";
 }
 
 }  // namespace
@@ -96,7 +133,25 @@ int WriteExperimentReport(const ReportRequest& request) {
   if (!paper_file.empty()) paper = PaperReference::Load(paper_file);
 
   const ExperimentReport report = BuildReport(reported, plan, results, paper);
-  WriteReport(report, request.output_dir);
+  // Written whole into a staging folder beside it and published at the end:
+  // a full disk or a killed run leaves the earlier report as it was (and at
+  // most a staging folder, which the next report removes).
+  StagedFolder staged(request.output_dir.string(), /*overwrite=*/true, OwnedReportFolder());
+  const fs::path staging = staged.staging_path();
+  WriteReport(report, staging);
+  bool figures_drawn = false;
+  if (request.figures) {
+    const fs::path script = fs::path(DUSKMAP_SOURCE_DIR) / "scripts" / "plot_report.py";
+    std::string command = "/usr/bin/python3 " + ShellQuote(script.string()) + " " +
+                          ShellQuote(staging.string());
+    for (const fs::path& dir : request.results_dirs) {
+      command += " --jobs-dir " + ShellQuote((dir / "jobs").string());
+    }
+    command += " --title " + ShellQuote(fs::path(request.config_path).filename().string());
+    command += " > /dev/null";
+    figures_drawn = std::system(command.c_str()) == 0;
+  }
+  staged.Commit();
   for (const SkippedFeature& skipped : manifest.skipped_features) {
     std::cout << "note: feature " << skipped.label << " skipped: " << skipped.reason << "\n";
   }
@@ -127,21 +182,11 @@ int WriteExperimentReport(const ReportRequest& request) {
               << agreement.FindingsReproduced() << "/" << agreement.FindingsDecided() << " ("
               << (request.output_dir / "agreement.md").string() << ")\n";
   }
-  if (request.figures) {
-    const fs::path script = fs::path(DUSKMAP_SOURCE_DIR) / "scripts" / "plot_report.py";
-    std::string command = "/usr/bin/python3 " + ShellQuote(script.string()) + " " +
-                          ShellQuote(request.output_dir.string());
-    for (const fs::path& dir : request.results_dirs) {
-      command += " --jobs-dir " + ShellQuote((dir / "jobs").string());
-    }
-    command += " --title " + ShellQuote(fs::path(request.config_path).filename().string());
-    command += " > /dev/null";
-    if (std::system(command.c_str()) != 0) {
-      std::cout << "note: figures not drawn (scripts/plot_report.py failed; see its error "
-                   "above)\n";
-    } else {
-      std::cout << "report: " << (request.output_dir / "report.md").string() << "\n";
-    }
+  if (request.figures && !figures_drawn) {
+    std::cout << "note: figures not drawn (scripts/plot_report.py failed; see its error "
+                 "above)\n";
+  } else if (request.figures) {
+    std::cout << "report: " << (request.output_dir / "report.md").string() << "\n";
   }
   return static_cast<int>(results.missing_jobs.size());
 }
