@@ -7,6 +7,7 @@
 
 #include "slam/core/check.h"
 #include "slam/core/checksum.h"
+#include "slam/core/input_file.h"
 #include "slam/core/json_reader.h"
 #include "slam/io/output_safety.h"
 
@@ -75,6 +76,7 @@ void WriteRunManifest(const RunManifest& m, const fs::path& results_dir) {
 
 RunManifest ReadRunManifest(const fs::path& results_dir) {
   const fs::path path = results_dir / kManifestFile;
+  RefuseNonRegularFile(path.string());  // before opening: a FIFO would block
   std::ifstream in(path);
   SLAM_THROW_IF_NOT(InputError, in.good())
       << path.string() << ": missing (not the results folder of `duskmap run`)";

@@ -14,6 +14,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "slam/core/check.h"
+#include "slam/core/input_file.h"
 #include "slam/features/eval_image.h"
 #include "slam/core/timer.h"
 #include "slam/features/feature_extractor.h"
@@ -136,6 +137,7 @@ CorrespondencePair ReadCorrespondencePair(const std::string& directory, const st
         << ": missing (a pair folder holds 01.*, 02.* and corrs.txt)";
   }
   const std::string corrs = (fs::path(directory) / "corrs.txt").string();
+  RefuseNonRegularFile(corrs);  // before opening: a FIFO would block
   std::ifstream in(corrs);
   SLAM_THROW_IF_NOT(InputError, in.good())
       << corrs << ": missing (the pair's correspondences; a fixed camera's images named 01, 02: --layout static)";

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "slam/core/check.h"
+#include "slam/core/input_file.h"
 
 namespace duskmap {
 namespace {
@@ -59,6 +60,7 @@ std::vector<PairSelector> ParsePairList(const std::string& list) {
 }
 
 std::vector<PairSelector> ReadPairListFile(const std::string& path) {
+  RefuseNonRegularFile(path, "--pairs-file");  // before opening: a FIFO would block
   std::ifstream in(path);
   SLAM_THROW_IF_NOT(InputError, in.good()) << path << ": cannot read the pair list";
   std::vector<PairSelector> selectors;

@@ -59,6 +59,28 @@ TEST(InputCli, FifosAndFoldersGivenAsFilesAreRefusedWithoutBlocking) {
   const std::string rates = Fifo(dir, "cells.csv");
   ExpectOneLineError(RunTimed("check-rates --baseline " + rates + " --current " + rates),
                      {rates + ": is a FIFO (named pipe), not a regular file"});
+  // A results folder's run.json (report), features eval's --pairs-file and a pair's corrs.txt.
+  fs::create_directories(dir / "results");
+  const std::string manifest = Fifo(dir / "results", "run.json");
+  std::ofstream(dir / "experiment_ok.json")
+      << R"({"dataset": {"path": "/nonexistent/data", "format": "synthetic"}, "features": ["OR"],)"
+      << R"( "maps": ["1"], "localization_sessions": ["A"]})";
+  ExpectOneLineError(RunTimed("report " + (dir / "experiment_ok.json").string() + " --results " +
+                              (dir / "results").string() + " --output " + (dir / "report").string()),
+                     {manifest + ": is a FIFO (named pipe), not a regular file"});
+  const fs::path pair = dir / "pairs" / "indoor" / "planes";
+  duskmap::testing::TwoPlanePair().Write(pair);
+  const std::string pair_list = Fifo(dir, "pairs.txt");
+  ExpectOneLineError(RunTimed("features eval --data " + (dir / "pairs").string() + " --types orb --pairs-file " +
+                              pair_list),
+                     {"--pairs-file " + pair_list + ": is a FIFO (named pipe), not a regular file"});
+  fs::remove(pair / "corrs.txt");
+  const std::string corrs = Fifo(pair, "corrs.txt");
+  const CliResult eval = RunTimed("features eval --data " + (dir / "pairs").string() + " --types orb");
+  EXPECT_EQ(eval.exit_code, 1) << eval.output;
+  EXPECT_NE(eval.output.find("duskmap: error: " + corrs + ": is a FIFO (named pipe), not a regular file\n"),
+            std::string::npos)
+      << eval.output;
   const fs::path folder = dir / "generator.json";
   fs::create_directories(folder);
   ExpectOneLineError(RunTimed("generate --config " + folder.string() + " --output " + (dir / "data").string()),
