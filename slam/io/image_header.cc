@@ -49,7 +49,14 @@ int64_t ReadLittleEndian(const uint8_t* p, int bytes) {
 
 std::optional<ImageHeaderSize> BmpSize(const uint8_t* data, size_t size) {
   if (size < 26) return std::nullopt;
-  if (ReadLittleEndian(data + 14, 4) == 12) {
+  const int64_t dib_size = ReadLittleEndian(data + 14, 4);
+  // The DIB header sizes BMP files use; other bytes after "BM" are no BMP
+  // header (the decoder then judges the file).
+  if (dib_size != 12 && dib_size != 40 && dib_size != 52 && dib_size != 56 && dib_size != 64 &&
+      dib_size != 108 && dib_size != 124) {
+    return std::nullopt;
+  }
+  if (dib_size == 12) {
     return ImageHeaderSize{ReadLittleEndian(data + 18, 2), ReadLittleEndian(data + 20, 2)};
   }
   const int64_t width = static_cast<int32_t>(ReadLittleEndian(data + 18, 4));

@@ -150,6 +150,10 @@ TEST(ImageHeader, BmpSizeIsReadFromItsHeader) {
   huge.resize(64, 0);
   const std::string huge_path = WriteBytes("huge.bmp", huge);
   EXPECT_EQ(ErrorOf(huge_path), huge_path + ": 100000x100000 image exceeds the 64-Mpixel limit");
+  // "BM" and then no BMP header: no size (the decoder judges the file).
+  const std::string text = "BM is how this text starts, and it goes on for a while.";
+  EXPECT_FALSE(ReadImageFileHeaderSize(WriteBytes("bm.txt", std::vector<uint8_t>(text.begin(), text.end())))
+                   .has_value());
 }
 
 std::string BeforeDecodingErrorOf(const std::string& path) {
