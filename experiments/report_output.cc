@@ -138,7 +138,13 @@ int WriteExperimentReport(const ReportRequest& request) {
   // most a staging folder, which the next report removes).
   StagedFolder staged(request.output_dir.string(), /*overwrite=*/true, OwnedReportFolder());
   const fs::path staging = staged.staging_path();
-  WriteReport(report, staging);
+  try {
+    WriteReport(report, staging);
+  } catch (const InputError& e) {
+    // (The message names a file of the staging folder, which is removed.)
+    throw InputError(request.output_dir.string() + ": the report was not written, the earlier one "
+                     "is as it was (" + e.what() + ")");
+  }
   bool figures_drawn = false;
   if (request.figures) {
     const fs::path script = fs::path(DUSKMAP_SOURCE_DIR) / "scripts" / "plot_report.py";

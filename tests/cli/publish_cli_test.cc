@@ -284,7 +284,8 @@ TEST_F(PublishCli, AFailedReportKeepsTheEarlierOne) {
   ASSERT_EQ(first.exit_code, 0) << first.output;
   const auto before = Snapshot(results / "report");
   const Result full = RunDuskmap(Report(results, results / "report"), "trap '' XFSZ; ulimit -f 1; ");
-  ExpectOneLineError(full, {"cannot write: File too large"});
+  ExpectOneLineError(full, {(results / "report").string() + ": the report was not written",
+                            "cannot write: File too large"});
   EXPECT_EQ(Snapshot(results / "report"), before);
   EXPECT_TRUE(Leftovers(results).empty()) << Leftovers(results).front();
 
