@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "tests/testing/cli_checks.h"
 #include "tests/testing/run_duskmap.h"
 #include "tests/testing/temp_dir.h"
 
@@ -22,16 +23,7 @@ namespace fs = std::filesystem;
 
 using Result = duskmap::testing::CliResult;
 using duskmap::testing::RunDuskmap;
-
-// One line, "duskmap: error: ", exit code 1 (a crash exits -1), each needle in it.
-void ExpectOneLineError(const Result& r, const std::vector<std::string>& needles) {
-  EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_EQ(r.output.rfind("duskmap: error: ", 0), 0u) << r.output;
-  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
-  for (const std::string& needle : needles) {
-    EXPECT_NE(r.output.find(needle), std::string::npos) << "missing '" << needle << "' in " << r.output;
-  }
-}
+using duskmap::testing::ExpectOneLineError;
 
 constexpr const char* kTooDeep = "arrays and objects nested deeper than 64 levels";
 

@@ -23,6 +23,7 @@
 #include "tests/features/static_scene.h"
 #include "tests/features/two_plane_pair.h"
 #include "tests/testing/temp_dir.h"
+#include "tests/testing/cli_checks.h"
 #include "tests/testing/run_duskmap.h"
 
 namespace {
@@ -31,6 +32,8 @@ namespace fs = std::filesystem;
 
 using Result = duskmap::testing::CliResult;
 using duskmap::testing::RunDuskmap;
+using duskmap::testing::ExpectOneLineError;
+using duskmap::testing::ReadText;
 
 std::vector<std::string> Lines(const std::string& path) {
   std::vector<std::string> lines;
@@ -281,21 +284,6 @@ TEST_F(FeaturesCli, EvalScoresPairsByEpipolarGeometry) {
   const Result wrong = RunDuskmap("features eval --layout pairs --data " + dir_ + "/data --types orb");
   EXPECT_NE(wrong.exit_code, 0);
   EXPECT_NE(wrong.output.find("no pair folder"), std::string::npos) << wrong.output;
-}
-
-// The error is one line that starts "duskmap: error: " and holds each needle.
-void ExpectOneLineError(const Result& r, const std::vector<std::string>& needles) {
-  EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_EQ(r.output.rfind("duskmap: error: ", 0), 0u) << r.output;
-  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
-  for (const std::string& needle : needles) {
-    EXPECT_NE(r.output.find(needle), std::string::npos) << "missing '" << needle << "' in " << r.output;
-  }
-}
-
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 // A fixed camera's images without H files: the static layout, detected and

@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/features/two_plane_pair.h"
+#include "tests/testing/cli_checks.h"
 #include "tests/testing/run_duskmap.h"
 #include "tests/testing/temp_dir.h"
 
@@ -25,18 +26,9 @@ namespace {
 namespace fs = std::filesystem;
 
 using duskmap::testing::CliResult;
+using duskmap::testing::ExpectOneLineError;
 
 CliResult RunTimed(const std::string& args) { return duskmap::testing::RunDuskmap(args, "timeout 120 "); }
-
-// The error is one line that starts "duskmap: error: " and holds each needle.
-void ExpectOneLineError(const CliResult& r, const std::vector<std::string>& needles) {
-  EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_EQ(r.output.rfind("duskmap: error: ", 0), 0u) << r.output;
-  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
-  for (const std::string& needle : needles) {
-    EXPECT_NE(r.output.find(needle), std::string::npos) << "missing '" << needle << "' in " << r.output;
-  }
-}
 
 std::string Fifo(const fs::path& dir, const std::string& name) {
   const std::string path = (dir / name).string();

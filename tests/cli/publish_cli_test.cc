@@ -24,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include "slam/map/map_store.h"
+#include "tests/testing/cli_checks.h"
 #include "tests/testing/run_duskmap.h"
 #include "tests/testing/temp_dir.h"
 
@@ -33,35 +34,9 @@ namespace fs = std::filesystem;
 
 using Result = duskmap::testing::CliResult;
 using duskmap::testing::RunDuskmap;
-
-std::string ReadText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-// Every file under `root` (or `root` itself) with its bytes.
-std::map<std::string, std::string> Snapshot(const fs::path& root) {
-  std::map<std::string, std::string> files;
-  if (fs::is_regular_file(root)) {
-    files[root.string()] = ReadText(root);
-    return files;
-  }
-  for (const auto& entry : fs::recursive_directory_iterator(root)) {
-    if (entry.is_regular_file()) files[entry.path().string()] = ReadText(entry.path());
-  }
-  return files;
-}
-
-void ExpectOneLineError(const Result& r, const std::vector<std::string>& needles) {
-  EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_EQ(r.output.rfind("duskmap: error: ", 0), 0u) << r.output;
-  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
-  for (const std::string& needle : needles) {
-    EXPECT_NE(r.output.find(needle), std::string::npos) << "missing '" << needle << "' in " << r.output;
-  }
-}
+using duskmap::testing::ExpectOneLineError;
+using duskmap::testing::ReadText;
+using duskmap::testing::Snapshot;
 
 // The error that ends what a command printed (after its progress lines).
 void ExpectFinalError(const Result& r, const std::vector<std::string>& needles) {

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/testing/temp_dir.h"
+#include "tests/testing/cli_checks.h"
 #include "tests/testing/run_duskmap.h"
 
 namespace {
@@ -23,14 +24,8 @@ namespace {
 namespace fs = std::filesystem;
 
 using Result = duskmap::testing::CliResult;
+using duskmap::testing::ReadText;
 using duskmap::testing::RunDuskmap;
-
-std::string ReadText(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 // Every table's CSV except the timing table (wall-clock times differ run to run).
 std::map<std::string, std::string> DeterministicTables(const fs::path& report) {
