@@ -49,6 +49,10 @@ struct LocalizationOptions {
   // RGBD/OptimizeMaxError of the cache validation (the mapping optimiser's
   // max_error_ratio is 0 in the paper's runs, so it has its own value).
   double odometry_cache_max_error_ratio = 3.0;
+  // Proximity before the first re-localization (the paper's runs, -loc_null:
+  // spec §5 and §9.1): the map->odometry correction starts as identity, so the
+  // search runs around the odometry pose taken as a map pose, over every node.
+  bool proximity_before_relocalized = true;
   void Check() const;
 };
 

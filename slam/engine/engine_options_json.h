@@ -43,6 +43,7 @@ struct JsonCodec<LocalizationOptions> {
     f("proximity_max_paths", o.proximity_max_paths);
     f("odometry_cache_size", o.odometry_cache_size);
     f("odometry_cache_max_error_ratio", o.odometry_cache_max_error_ratio);
+    f("proximity_before_relocalized", o.proximity_before_relocalized);
   }
 };
 

@@ -47,6 +47,12 @@ struct CandidateAttempt {
   RegistrationStatus status = RegistrationStatus::kNoFeatures;
   int matches = 0;  // first-pass correspondences with a map 3D point
   int inliers = 0;
+  // Proximity candidates: the node's distance to the pose estimate the
+  // search ran from (m); nullopt for the LCD hypothesis.
+  std::optional<double> search_distance_m;
+  // The estimated node-to-frame translation |t| (m); nullopt unless the
+  // registration produced a transform.
+  std::optional<double> estimate_distance_m;
   // Ground-truth distance between the node's camera and the frame's camera
   // (m, deg); nullopt unless both have ground truth (filled by the localizer
   // from the frame's world_from_camera and the node's truth_from_camera: it
@@ -72,7 +78,10 @@ struct LocalizationRecord {
   std::optional<RegistrationStatus> registration_status;
   NodeId matched_node = 0;         // 0 unless re-localized
   SessionId matched_session = -1;  // session of matched_node
-  LinkType matched_by = LinkType::kLoopClosure;  // loop closure (LCD) or proximity
+  // The accepted link's type, as the reference types it (spec §5.4): loop
+  // closure for the LCD hypothesis, also when proximity proposed it first;
+  // proximity for any other proximity target.
+  LinkType matched_by = LinkType::kLoopClosure;
   int inliers = 0;                 // of the accepted (or last tried) transform
   // Odometry-cache validation of the last accepted transform (nullopt when
   // the validation is off or no transform was accepted), with the largest

@@ -6,7 +6,8 @@
 // cannot say (values null unless the frame re-localized, the pose, the check).
 //   timings:  {"features": 9.1, "lcd": 3.2, "proximity": 0.1, "registration": 4.0, "total": 16.5}
 //   attempt:  {"node": 5, "session": 0, "source": "proximity", "status": "too_few_inliers",
-//              "matches": 30, "inliers": 12, "truth_distance_m": null, "truth_angle_deg": null}
+//              "matches": 30, "inliers": 12, "search_distance_m": 0.4, "estimate_distance_m": null,
+//              "truth_distance_m": null, "truth_angle_deg": null}
 #pragma once
 
 #include <utility>
@@ -53,6 +54,8 @@ struct JsonCodec<CandidateAttempt> {
     f("status", o.status);
     f("matches", o.matches);
     f("inliers", o.inliers);
+    f("search_distance_m", o.search_distance_m);      // null for the LCD hypothesis
+    f("estimate_distance_m", o.estimate_distance_m);  // null without a transform
     f("truth_distance_m", o.truth_distance_m);  // null when unknown
     f("truth_angle_deg", o.truth_angle_deg);
   }

@@ -27,6 +27,9 @@ CandidateAttempt AttemptOf(NodeId id, LinkType source, const MapNode& node, cons
   attempt.status = registration.status;
   attempt.matches = registration.matches_first_pass;
   attempt.inliers = registration.num_inliers;
+  if (registration.accepted() || registration.status == RegistrationStatus::kTranslationTooLong) {
+    attempt.estimate_distance_m = registration.node_from_query.translation.norm();
+  }
   if (node.truth_from_camera && frame.world_from_camera) {
     const Rigid3d node_from_frame = node.truth_from_camera->Inverse() * *frame.world_from_camera;
     attempt.truth_distance_m = node_from_frame.translation.norm();
@@ -97,7 +100,8 @@ LocalizationRecord Localizer::ProcessFrame(const RgbdFrame& frame,
   record.lcd_top = lcd.top;
 
   std::vector<Candidate> candidates = ProximityCandidates(odom_from_camera, &record);
-  if (lcd.accepted()) candidates.push_back({lcd.hypothesis, LinkType::kLoopClosure});
+  for (Candidate& c : candidates) c.is_hypothesis = lcd.accepted() && c.node == lcd.hypothesis;
+  if (lcd.accepted()) candidates.push_back({lcd.hypothesis, LinkType::kLoopClosure, {}, true});
   const bool had_pose = map_from_odom_.has_value();
   const Eigen::Vector3d previous_position =
       had_pose ? Eigen::Vector3d((*map_from_odom_ * odom_from_camera).translation)
@@ -140,27 +144,37 @@ LocalizationRecord Localizer::ProcessFrame(const RgbdFrame& frame,
 std::vector<Localizer::Candidate> Localizer::ProximityCandidates(const Rigid3d& odom_from_camera,
                                                                  LocalizationRecord* record) {
   std::vector<Candidate> candidates;
-  if (!map_from_odom_ || !options_.localization.proximity ||
-      options_.localization.proximity_max_paths == 0) {
+  const LocalizationOptions& o = options_.localization;
+  if (!o.proximity || o.proximity_max_paths == 0 ||
+      (!map_from_odom_ && !o.proximity_before_relocalized)) {
     return candidates;
   }
   Stopwatch watch;
-  // Poses are comparable only within the group of sessions the last
-  // re-localization belongs to (unconnected groups have their own frames).
-  std::set<SessionId> group;
-  for (const auto& g : map_.ConnectedSessionGroups()) {
-    if (std::find(g.begin(), g.end(), localized_session_) != g.end()) group.insert(g.begin(), g.end());
-  }
   std::vector<ProximityNode> nodes;
-  for (const auto& [id, node] : map_.nodes()) {
-    if (group.count(node.session)) nodes.push_back({id, node.map_from_camera()});
+  if (map_from_odom_) {
+    // Poses are comparable only within the group of sessions the last
+    // re-localization belongs to (unconnected groups have their own frames).
+    std::set<SessionId> group;
+    for (const auto& g : map_.ConnectedSessionGroups()) {
+      if (std::find(g.begin(), g.end(), localized_session_) != g.end()) group.insert(g.begin(), g.end());
+    }
+    for (const auto& [id, node] : map_.nodes()) {
+      if (group.count(node.session)) nodes.push_back({id, node.map_from_camera()});
+    }
+  } else {
+    // Not yet re-localized: the odometry pose taken as a map pose (the
+    // reference's map correction starts as identity with -loc_null), every
+    // node a candidate.
+    for (const auto& [id, node] : map_.nodes()) nodes.push_back({id, node.map_from_camera()});
   }
+  const Rigid3d map_from_camera =
+      map_from_odom_ ? *map_from_odom_ * odom_from_camera : odom_from_camera;
   const Likelihood& likelihood = lcd_->last_likelihood();
   const ProximityResult proximity = FindProximityCandidates(
-      options_.LocalizationProximity(), *map_from_odom_ * odom_from_camera, nodes, lcd_->graph(),
+      options_.LocalizationProximity(), map_from_camera, nodes, lcd_->graph(),
       [&likelihood](NodeId id) { return likelihood.Adjusted(id); });
   for (const ProximityCandidate& c : proximity.candidates) {
-    candidates.push_back({c.node, LinkType::kProximity});
+    candidates.push_back({c.node, LinkType::kProximity, c.distance_m});
   }
   record->proximity_candidates = static_cast<int>(candidates.size());
   record->timings.proximity_ms = watch.ElapsedMs();
@@ -173,14 +187,18 @@ Localizer::Attempt Localizer::TryCandidate(const Candidate& candidate, const Rgb
   const MapNode& node = map_.node(candidate.node);
   Stopwatch watch;
   // The node's rows shared with words are read from the vocabulary.
-  const RegistrationResult registration =
+  RegistrationResult registration =
       EstimateTransform(registration_, node.features.Decode(&lcd_->vocabulary()), node.camera,
                         features, frame.camera, matcher_.get());
+  if (candidate.type == LinkType::kProximity && !candidate.is_hypothesis) {
+    RejectLongerThan(options_.proximity.path_filtering_radius_m, &registration);
+  }
   record->timings.registration_ms += watch.ElapsedMs();
   ++record->candidates_tried;
   record->registration_status = registration.status;
   record->inliers = registration.num_inliers;
   record->attempts.push_back(AttemptOf(candidate.node, candidate.type, node, frame, registration));
+  record->attempts.back().search_distance_m = candidate.search_distance_m;
   if (!registration.accepted()) return Attempt::kRejected;
   if (cache_) {
     const CacheValidationResult validation =
@@ -198,7 +216,7 @@ Localizer::Attempt Localizer::TryCandidate(const Candidate& candidate, const Rgb
   record->relocalized = true;
   record->matched_node = candidate.node;
   record->matched_session = node.session;
-  record->matched_by = candidate.type;
+  record->matched_by = candidate.is_hypothesis ? LinkType::kLoopClosure : candidate.type;
   return Attempt::kApplied;
 }
 

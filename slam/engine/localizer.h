@@ -1,9 +1,13 @@
 // The localization-only phase (spec §9) over a const Map: no node, link or
 // word survives the frame that created it. The session starts with no prior
-// pose; until the first re-localization only loop closure detection proposes
-// candidates, afterwards proximity detection around the corrected pose too
-// (tried first, as the reference computes the global transform after
-// proximity). As soon as one candidate's transform is accepted the others are
+// pose: proximity detection searches around the corrected pose, which until
+// the first re-localization is the odometry pose taken as a map pose (the
+// reference with -loc_null; localization.proximity_before_relocalized), and is
+// tried before the loop closure hypothesis (the reference computes the global
+// transform after proximity). A proximity link must be no longer than
+// proximity.path_filtering_radius_m, unless its target is the hypothesis,
+// which is then linked as a loop closure (spec §5.4). As soon as one
+// candidate's transform is accepted the others are
 // not tested (paper era, spec §9.3), and the map->odometry correction is set
 // from that link: map_from_odom = map_from_node_camera * node_from_query *
 // odom_from_camera^-1. With localization.odometry_cache_size > 0 an accepted
@@ -52,6 +56,10 @@ class Localizer {
   struct Candidate {
     NodeId node = 0;
     LinkType type = LinkType::kLoopClosure;
+    std::optional<double> search_distance_m;  // proximity: distance to the pose estimate
+    // A proximity target that is also the accepted LCD hypothesis: linked as a
+    // loop closure, without proximity's length limit (spec §5.4).
+    bool is_hypothesis = false;
   };
   std::vector<Candidate> ProximityCandidates(const Rigid3d& odom_from_camera,
                                              LocalizationRecord* record);

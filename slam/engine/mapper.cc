@@ -180,9 +180,12 @@ std::optional<Link> Mapper::RegisterCandidate(NodeId current, const Candidate& c
   const MapNode& old_node = map_.node(candidate.node);
   const MapNode& new_node = map_.node(current);
   Stopwatch watch;
-  const RegistrationResult registration =
+  RegistrationResult registration =
       EstimateTransform(registration_, old_node.features.Decode(), old_node.camera,
                         current_features_, new_node.camera, matcher_.get());
+  if (candidate.type == LinkType::kProximity) {
+    RejectLongerThan(options_.proximity.path_filtering_radius_m, &registration);
+  }
   result->timings.registration_ms += watch.ElapsedMs();
   ++result->registrations;
   if (!registration.accepted()) return std::nullopt;

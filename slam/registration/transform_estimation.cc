@@ -259,4 +259,10 @@ RegistrationResult EstimateTransform(const RegistrationOptions& options,
   return finish();
 }
 
+void RejectLongerThan(double max_translation_m, RegistrationResult* result) {
+  if (result->accepted() && !(result->node_from_query.translation.norm() <= max_translation_m)) {
+    result->status = RegistrationStatus::kTranslationTooLong;
+  }
+}
+
 }  // namespace duskmap

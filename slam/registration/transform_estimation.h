@@ -57,6 +57,9 @@ enum class RegistrationStatus {
   kBundleAdjustmentFailed,   // the solver failed or returned a non-finite pose
   kBundleAdjustmentTooFewInliers,  // inliers left after outlier removal < min_inliers
   kVarianceTooHigh,          // linear variance above information.max_linear_variance_m2
+  // Set by RejectLongerThan, not by EstimateTransform: an accepted transform
+  // whose translation is longer than the link may be.
+  kTranslationTooLong,
 };
 
 const char* RegistrationStatusName(RegistrationStatus status);
@@ -104,5 +107,11 @@ RegistrationResult EstimateTransform(const RegistrationOptions& options,
                                      const FrameFeatures& query,
                                      const PinholeCamera& query_camera,
                                      const FeatureMatcher* matcher = nullptr);
+
+// An accepted result whose translation |t| exceeds max_translation_m becomes
+// kTranslationTooLong (node_from_query kept, for the records): a proximity
+// link must be no longer than RGBD/ProximityPathFilteringRadius (spec §5.4,
+// §6.7). Other results are left as they are.
+void RejectLongerThan(double max_translation_m, RegistrationResult* result);
 
 }  // namespace duskmap

@@ -22,7 +22,8 @@ struct JsonEnumNames<RegistrationStatus> {
       {RegistrationStatus::kSecondPassTooFewInliers, "second_pass_too_few_inliers"},
       {RegistrationStatus::kBundleAdjustmentFailed, "ba_failed"},
       {RegistrationStatus::kBundleAdjustmentTooFewInliers, "ba_too_few_inliers"},
-      {RegistrationStatus::kVarianceTooHigh, "variance_too_high"}};
+      {RegistrationStatus::kVarianceTooHigh, "variance_too_high"},
+      {RegistrationStatus::kTranslationTooLong, "translation_too_long"}};
 };
 
 }  // namespace duskmap

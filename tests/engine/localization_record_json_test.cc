@@ -23,7 +23,7 @@ void ExpectNamedAlike(NameFunction name_of, size_t values) {
 TEST(LocalizationRecordJson, EnumsAreNamedAsTheirNameFunctionsNameThem) {
   ExpectNamedAlike<LocalizationOutcome>(LocalizationOutcomeName, 6);
   ExpectNamedAlike<LcdStatus>(LcdStatusName, 6);
-  ExpectNamedAlike<RegistrationStatus>(RegistrationStatusName, 11);
+  ExpectNamedAlike<RegistrationStatus>(RegistrationStatusName, 12);
   ExpectNamedAlike<CacheValidation>(CacheValidationName, 3);
   ExpectNamedAlike<LinkType>(LinkTypeName, 5);
 }
@@ -37,9 +37,11 @@ TEST(LocalizationRecordJson, AttemptsWriteUnknownTruthAsNullAndReadBack) {
   a.matches = 30;
   a.inliers = 12;
   a.truth_angle_deg = 2.5;
+  a.search_distance_m = 0.5;
   const nlohmann::json json = ToJsonObject(a);
   EXPECT_EQ(json.dump(),
-            R"({"inliers":12,"matches":30,"node":5,"session":1,"source":"proximity",)"
+            R"({"estimate_distance_m":null,"inliers":12,"matches":30,"node":5,)"
+            R"("search_distance_m":0.5,"session":1,"source":"proximity",)"
             R"("status":"too_few_inliers","truth_angle_deg":2.5,"truth_distance_m":null})");
   const CandidateAttempt back = ReadJsonOptions<CandidateAttempt>(json, "attempt");
   EXPECT_EQ(ToJsonObject(back), json);

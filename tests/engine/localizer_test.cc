@@ -99,6 +99,77 @@ TEST_F(LocalizerTest, RefusedTransformsSayWhy) {
   EXPECT_FALSE(localizer.map_from_odom().has_value());
 }
 
+// Loop closure detection off: only proximity proposes candidates.
+EngineOptions ProximityOnly() {
+  EngineOptions options = PaperOptions();
+  options.loop_closure.loop_threshold = 1.0;  // 1 - P(new place) never exceeds it
+  return options;
+}
+
+// The reference with -loc_null searches proximity before any re-localization,
+// around the odometry pose taken as a map pose (spec §5, §9.1): session A starts
+// where map 1 starts, so its first frame re-localizes by proximity alone.
+TEST_F(LocalizerTest, ProximitySearchesBeforeTheFirstRelocalization) {
+  EngineOptions options = ProximityOnly();
+  ASSERT_TRUE(options.localization.proximity_before_relocalized);  // the paper's runs
+  Localizer localizer(*map_, options);
+  const std::vector<LocalizationRecord> records = Localize(&localizer, "A");
+  ASSERT_FALSE(records.empty());
+  EXPECT_TRUE(records[0].relocalized);
+  int relocalized = 0;
+  for (const LocalizationRecord& r : records) {
+    EXPECT_EQ(r.lcd_hypothesis, 0u);
+    for (const CandidateAttempt& attempt : r.attempts) {
+      EXPECT_EQ(attempt.source, LinkType::kProximity);
+      ASSERT_TRUE(attempt.search_distance_m.has_value());
+      EXPECT_LE(*attempt.search_distance_m, options.proximity.path_filtering_radius_m);
+    }
+    if (!r.relocalized) continue;
+    ++relocalized;
+    EXPECT_EQ(r.matched_by, LinkType::kProximity);
+  }
+  EXPECT_GE(relocalized, 20);
+
+  // Without it, nothing proposes a candidate until a loop closure, which never comes.
+  options.localization.proximity_before_relocalized = false;
+  Localizer waiting(*map_, options);
+  for (const LocalizationRecord& r : Localize(&waiting, "A")) {
+    EXPECT_FALSE(r.relocalized);
+    EXPECT_TRUE(r.attempts.empty());
+  }
+}
+
+// A proximity link is accepted only when the estimated translation is within
+// RGBD/ProximityPathFilteringRadius (spec §5.4): with the odometry shifted
+// 0.45 m from where the frames were taken, candidates near the shifted pose lie
+// up to about a metre from the true one and registration says so.
+TEST_F(LocalizerTest, AProximityLinkLongerThanTheFilteringRadiusIsRefused) {
+  EngineOptions options = ProximityOnly();
+  options.proximity.path_filtering_radius_m = 0.3;
+  Localizer localizer(*map_, options);
+  const Rigid3d shift(Eigen::Quaterniond::Identity(), Eigen::Vector3d(0.45, 0.0, 0.0));
+  std::unique_ptr<SessionReader> reader = dataset_->OpenSession("A");
+  int too_long = 0, accepted = 0;
+  while (std::optional<RgbdFrame> frame = reader->Next()) {
+    frame->odom_from_body = shift * frame->odom_from_body;
+    const LocalizationRecord r = localizer.ProcessFrame(*frame);
+    for (const CandidateAttempt& attempt : r.attempts) {
+      if (attempt.status == RegistrationStatus::kTranslationTooLong) {
+        ++too_long;
+        ASSERT_TRUE(attempt.estimate_distance_m.has_value());
+        EXPECT_GT(*attempt.estimate_distance_m, 0.3);
+      } else if (attempt.status == RegistrationStatus::kAccepted) {
+        ++accepted;
+        ASSERT_TRUE(attempt.estimate_distance_m.has_value());
+        EXPECT_LE(*attempt.estimate_distance_m, 0.3);
+      }
+    }
+    if (r.relocalized) EXPECT_EQ(r.registration_status, RegistrationStatus::kAccepted);
+  }
+  EXPECT_GE(too_long, 1);
+  EXPECT_GE(accepted, 1);
+}
+
 TEST_F(LocalizerTest, AMapOfAnotherFeatureTypeIsRefused) {
   EngineOptions options = PaperOptions();
   options.features.type = "orb";

@@ -298,5 +298,28 @@ TEST(EstimateTransform, InconsistentInputsThrow) {
   EXPECT_THROW(Estimate(pair, options), ConfigError);
 }
 
+// A proximity link's length limit (spec §5.4): only an accepted transform
+// longer than the limit is refused; its estimate stays for the records.
+TEST(RejectLongerThan, RefusesOnlyAcceptedTransformsBeyondTheLimit) {
+  RegistrationResult result;
+  result.status = RegistrationStatus::kAccepted;
+  result.node_from_query.translation = Eigen::Vector3d(0.6, 0.0, 0.8);  // 1 m
+  RejectLongerThan(1.0, &result);
+  EXPECT_EQ(result.status, RegistrationStatus::kAccepted);
+  RejectLongerThan(0.99, &result);
+  EXPECT_EQ(result.status, RegistrationStatus::kTranslationTooLong);
+  EXPECT_DOUBLE_EQ(result.node_from_query.translation.norm(), 1.0);
+  RegistrationResult rejected;
+  rejected.status = RegistrationStatus::kTooFewInliers;
+  rejected.node_from_query.translation = Eigen::Vector3d(5.0, 0.0, 0.0);
+  RejectLongerThan(1.0, &rejected);
+  EXPECT_EQ(rejected.status, RegistrationStatus::kTooFewInliers);
+  RegistrationResult not_finite;
+  not_finite.status = RegistrationStatus::kAccepted;
+  not_finite.node_from_query.translation = Eigen::Vector3d(std::nan(""), 0.0, 0.0);
+  RejectLongerThan(1.0, &not_finite);
+  EXPECT_EQ(not_finite.status, RegistrationStatus::kTranslationTooLong);
+}
+
 }  // namespace
 }  // namespace duskmap

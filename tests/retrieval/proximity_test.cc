@@ -78,5 +78,38 @@ TEST(Proximity, WithoutLikelihoodTheNearestWinsAndFiltersApply) {
   EXPECT_THROW(FindProximityCandidates(options, At(0, 0), scene.nodes, scene.graph, none), ConfigError);
 }
 
+// Each of the reference's conditions (spec §5) refuses a candidate on its own:
+// a single node 0.5 m ahead is proposed; moved out of the radius, turned past
+// the heading window, beyond the path filtering radius, in a path past the
+// path limit, or already linked, it is not.
+TEST(Proximity, EachConditionRefusesACandidateOnItsOwn) {
+  PlaceGraph graph{16};
+  for (NodeId id : {1, 2}) graph.AddNode(id, static_cast<SessionId>(id));
+  const auto none = [](NodeId) { return 0.0f; };
+  ProximityOptions options;
+  const auto candidates = [&](const std::vector<ProximityNode>& nodes,
+                              const std::function<bool(NodeId)>& linked = {}) {
+    return FindProximityCandidates(options, At(0, 0), nodes, graph, none, linked).candidates;
+  };
+  const ProximityNode ahead{1, At(0.5, 0.0)};
+  ASSERT_EQ(candidates({ahead}).size(), 1u);
+  EXPECT_EQ(candidates({ahead})[0].node, 1);
+  EXPECT_TRUE(candidates({{1, At(1.2, 0.0)}}).empty());                 // radius 1 m
+  EXPECT_TRUE(candidates({{1, At(0.5, 0.0, 50.0 * M_PI / 180.0)}}).empty());  // angle 45 deg
+  EXPECT_EQ(candidates({{1, At(0.5, 0.0, 40.0 * M_PI / 180.0)}}).size(), 1u);
+  EXPECT_TRUE(candidates({ahead}, [](NodeId n) { return n == 1; }).empty());  // linked
+  options.path_filtering_radius_m = 0.4;                                 // target too far
+  EXPECT_TRUE(candidates({ahead}).empty());
+  options.path_filtering_radius_m = 1.0;
+  // Two paths (two sessions, no odometry link between them): the paper's
+  // localization runs try one, the nearer without likelihoods.
+  options.max_paths = 1;
+  const std::vector<ProximityCandidate> one = candidates({ahead, {2, At(0.3, 0.0)}});
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(one[0].node, 2);
+  options.max_paths = 0;
+  EXPECT_EQ(candidates({ahead, {2, At(0.3, 0.0)}}).size(), 2u);
+}
+
 }  // namespace
 }  // namespace duskmap
