@@ -3,6 +3,7 @@
 #include <cctype>
 #include <fstream>
 #include <set>
+#include <sstream>
 
 #include "slam/core/check.h"
 #include "slam/core/input_file.h"
@@ -52,6 +53,9 @@ int ParseIndex(const std::string& text) {
 }  // namespace
 
 std::vector<PairSelector> ParsePairList(const std::string& list) {
+  // Checked first: every later message quotes the list or an item of it.
+  SLAM_THROW_IF_NOT(ConfigError, list.find('\n') == std::string::npos)
+      << "--pairs: the list holds a line break (one line, e.g. 1-5,1-6; a file of pairs goes to --pairs-file)";
   std::vector<PairSelector> selectors;
   SLAM_THROW_IF_NOT(ConfigError, AppendItems(list, "--pairs", &selectors))
       << "--pairs: '" << list << "' has an empty item (expected e.g. 1-5,1-6)";
@@ -63,17 +67,24 @@ std::vector<PairSelector> ReadPairListFile(const std::string& path) {
   RefuseNonRegularFile(path, "--pairs-file");  // before opening: a FIFO would block
   std::ifstream in(path);
   SLAM_THROW_IF_NOT(InputError, in.good()) << path << ": cannot read the pair list";
+  std::string text;  // read by lines: getline marks a read error on `in` (bad())
+  for (std::string line; std::getline(in, line);) text += line + '\n';
+  SLAM_THROW_IF_NOT(InputError, !in.bad()) << path << ": read failed";
+  return ParsePairListText(text, path);
+}
+
+std::vector<PairSelector> ParsePairListText(const std::string& text, const std::string& path) {
+  std::istringstream in(text);
   std::vector<PairSelector> selectors;
   int line_number = 0;
   for (std::string line; std::getline(in, line);) {
     ++line_number;
-    const std::string text = Trimmed(line.substr(0, line.find('#')));
-    if (text.empty()) continue;
+    const std::string items = Trimmed(line.substr(0, line.find('#')));
+    if (items.empty()) continue;
     const std::string origin = path + ":" + std::to_string(line_number);
-    SLAM_THROW_IF_NOT(ConfigError, AppendItems(text, origin, &selectors))
-        << origin << ": '" << text << "' has an empty item";
+    SLAM_THROW_IF_NOT(ConfigError, AppendItems(items, origin, &selectors))
+        << origin << ": '" << items << "' has an empty item";
   }
-  SLAM_THROW_IF_NOT(InputError, !in.bad()) << path << ": read failed";
   SLAM_THROW_IF_NOT(InputError, !selectors.empty()) << path << ": lists no pair";
   CheckNoDuplicate(selectors);
   return selectors;

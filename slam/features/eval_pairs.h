@@ -16,7 +16,9 @@ struct PairSelector {
 };
 
 // "1-5,1-6": one selector per comma-separated item (spaces around items
-// ignored). ConfigError on an empty item or a selector listed twice.
+// ignored). ConfigError on a line break (`--pairs "$(cat list)"`: the
+// message would quote it over two lines), an empty item or a selector listed
+// twice.
 std::vector<PairSelector> ParsePairList(const std::string& list);
 
 // A list file: one or more comma-separated selectors per line; blank lines
@@ -24,6 +26,10 @@ std::vector<PairSelector> ParsePairList(const std::string& list);
 // be read or lists nothing; ConfigError naming file and line for a selector
 // listed twice.
 std::vector<PairSelector> ReadPairListFile(const std::string& path);
+
+// The list file's parsing, on its text (what ReadPairListFile calls once it
+// has read `path`): the same selectors and errors, origins "<path>:<line>".
+std::vector<PairSelector> ParsePairListText(const std::string& text, const std::string& path);
 
 // An image pair of a sequence: "<i>-<j>" or "<sequence>/<i>-<j>", i and j
 // positive image indices (imgN's N), i != j.

@@ -96,14 +96,16 @@ std::set<std::pair<int, int>> HomographyFiles(const fs::path& folder) {
 cv::Matx33d ReadHomography(const fs::path& path) {
   std::ifstream in(path);
   SLAM_THROW_IF_NOT(InputError, in.good()) << path.string() << ": cannot open homography";
-  cv::Matx33d h;
-  for (int i = 0; i < 9; ++i) {
-    SLAM_THROW_IF_NOT(InputError, static_cast<bool>(in >> h.val[i]) && std::isfinite(h.val[i]))
-        << path.string() << ": expected 9 finite numbers";
+  std::ostringstream text;
+  text << in.rdbuf();
+  return ParseHomography(text.str(), path.string());
+}
+
+bool IsFinite(const cv::Matx33d& m) {
+  for (const double v : m.val) {
+    if (!std::isfinite(v)) return false;
   }
-  SLAM_THROW_IF_NOT(InputError, std::abs(cv::determinant(h)) > 1e-12)
-      << path.string() << ": singular homography";
-  return h;
+  return true;
 }
 
 fs::path HomographyPath(const std::string& directory, int from, int to) {
@@ -162,6 +164,22 @@ void ReadStaticLayout(const fs::path& dir, const std::vector<fs::path>& files,
 }
 
 }  // namespace
+
+cv::Matx33d ParseHomography(const std::string& text, const std::string& path) {
+  std::istringstream in(text);
+  cv::Matx33d h;
+  for (int i = 0; i < 9; ++i) {
+    SLAM_THROW_IF_NOT(InputError, static_cast<bool>(in >> h.val[i]) && std::isfinite(h.val[i]))
+        << path << ": expected 9 finite numbers";
+  }
+  const double determinant = cv::determinant(h);
+  SLAM_THROW_IF_NOT(InputError, std::abs(determinant) > 1e-12) << path << ": singular homography";
+  // Entries near the double range pass the checks above with an infinite
+  // determinant, and pairs composed through the reference need the inverse.
+  SLAM_THROW_IF_NOT(InputError, std::isfinite(determinant) && IsFinite(h.inv()))
+      << path << ": homography out of range (its determinant or inverse is not finite)";
+  return h;
+}
 
 const char* SequenceLayoutName(SequenceLayout layout) {
   return layout == SequenceLayout::kStatic ? "static" : "homography";
@@ -261,6 +279,9 @@ void SelectSequencePairs(const std::vector<PairSelector>& selectors, std::vector
             return index == 1 ? cv::Matx33d::eye() : ReadHomography(HomographyPath(seq.directory, 1, index));
           };
           pair.second_from_first = from_reference(p.second_index) * from_reference(p.first_index).inv();
+          SLAM_THROW_IF_NOT(InputError, IsFinite(pair.second_from_first))
+              << seq.directory << ": pair '" << selectors[k].text << "' composed as H1to" << p.second_index
+              << "p * H1to" << p.first_index << "p^-1 is not finite (entries out of range)";
         }
       }
       pairs.push_back(pair);

@@ -47,6 +47,13 @@ struct ImageSequence {
   const SequenceImage* Image(int index) const;
 };
 
+// A homography file's text (H1toNp: 9 numbers, row-major, x_N ~ H x_1), as
+// read by the homography layout; `path` names it in errors. InputError
+// "<path>: expected 9 finite numbers", "<path>: singular homography" (|det| at
+// most 1e-12) or, when its determinant or inverse overflows, "<path>:
+// homography out of range ...".
+cv::Matx33d ParseHomography(const std::string& text, const std::string& path);
+
 // Whether `directory` holds a homography file (H<i>to<j>p).
 bool HasHomographyFiles(const std::string& directory);
 
@@ -75,9 +82,9 @@ SequenceSet FindImageSequences(const std::string& root, std::optional<SequenceLa
 // Keeps only the selected pairs ("<i>-<j>" in every sequence,
 // "<sequence>/<i>-<j>" in that one; sequences left without a pair are
 // dropped). A homography pair i-j takes HitoJp when the folder has it, else
-// H1toJp * H1toIp^-1; a static pair the identity. ConfigError naming the
-// selector's origin when it names no sequence or an image the sequence
-// lacks.
+// H1toJp * H1toIp^-1 (InputError naming the folder and pair when that
+// product is not finite); a static pair the identity. ConfigError naming the selector's
+// origin when it names no sequence or an image the sequence lacks.
 void SelectSequencePairs(const std::vector<PairSelector>& selectors, std::vector<ImageSequence>* sequences);
 
 }  // namespace duskmap

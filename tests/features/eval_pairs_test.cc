@@ -36,6 +36,26 @@ TEST(EvalPairs, ListsAreSplitAndChecked) {
             "--pairs: '3-3' pairs an image with itself");
 }
 
+// Found by tests/fuzz/eval_pairs_fuzz: `--pairs "$(cat list)"` passed a
+// line break, and the message quoting the item ran over two lines.
+TEST(EvalPairs, ALineBreakInPairsIsRefusedInOneLine) {
+  const std::string message =
+      "--pairs: the list holds a line break (one line, e.g. 1-5,1-6; a file of pairs goes to --pairs-file)";
+  EXPECT_EQ(ErrorOf([] { ParsePairList("day/1-4\ndusk/4-7"); }), message);
+  EXPECT_EQ(ErrorOf([] { ParsePairList("1-5,\n1-6"); }), message);
+  EXPECT_EQ(ParsePairList("1-5,1-6\r").back().text, "1-6");  // a trailing CR is trimmed, as before
+}
+
+TEST(EvalPairs, ListTextIsParsedAsTheFileIs) {
+  const std::vector<PairSelector> list = ParsePairListText("1-5 # day\r\n\n a/2-3,4-1\n", "pairs.txt");
+  ASSERT_EQ(list.size(), 3u);
+  EXPECT_EQ(list[0].text, "1-5");
+  EXPECT_EQ(list[1].origin, "pairs.txt:3");
+  EXPECT_EQ(list[2].text, "4-1");
+  EXPECT_EQ(ErrorOf([] { ParsePairListText("1-5,\n", "pairs.txt"); }), "pairs.txt:1: '1-5,' has an empty item");
+  EXPECT_EQ(ErrorOf([] { ParsePairListText("", "pairs.txt"); }), "pairs.txt: lists no pair");
+}
+
 TEST(EvalPairs, ListFilesNameTheirLines) {
   const std::string dir = testing::ProcessTempDir("eval_pairs");
   const std::string path = dir + "/night.txt";

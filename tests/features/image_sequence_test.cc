@@ -118,6 +118,35 @@ TEST(ImageSequence, BadFoldersAreNamedInOneLine) {
             (root / "nothing").string() + ": not a directory");
 }
 
+// Found by a hand-written input to tests/fuzz/homography_file_fuzz's check
+// (the fuzzer's own runs did not reach it): entries near the double range
+// passed the determinant check (an infinite determinant) and gave a
+// homography whose inverse was NaN.
+TEST(ImageSequence, HomographiesOutOfRangeAreRefused) {
+  const cv::Matx33d h = ParseHomography(" 0.88 0.31 -39.4\n-0.18 0.94 153.2\n1.96e-4 -1.6e-5 1\n", "H1to2p");
+  EXPECT_EQ(h(1, 2), 153.2);
+  EXPECT_EQ(ErrorOf([] { ParseHomography("1 0 0 0 1 0 0 0", "H1to2p"); }), "H1to2p: expected 9 finite numbers");
+  EXPECT_EQ(ErrorOf([] { ParseHomography("1 0 0 0 1 0 0 0 1e-13", "H1to2p"); }), "H1to2p: singular homography");
+  for (const char* text : {"1e200 0 0 0 1e200 0 0 0 1e200", "1e300 1e300 0 0 1 0 0 0 1e10"}) {
+    EXPECT_EQ(ErrorOf([&] { ParseHomography(text, "H1to2p"); }),
+              "H1to2p: homography out of range (its determinant or inverse is not finite)");
+  }
+  const fs::path root = testing::ProcessTempDir("sequence_range");
+  const fs::path huge = HomographySequenceFolder(root / "huge", 2);
+  std::ofstream(huge / "H1to2p") << "1e200 0 0\n0 1e200 0\n0 0 1e200\n";
+  EXPECT_EQ(ErrorOf([&] { ReadImageSequence(huge.string(), SequenceLayout::kHomography); }),
+            (huge / "H1to2p").string() + ": homography out of range (its determinant or inverse is not finite)");
+
+  // Each file in range, their composition for pair 2-3 (H1to3 * H1to2^-1) not.
+  const fs::path composed = HomographySequenceFolder(root / "composed", 3);
+  WriteHomography(composed / "H1to2p", {1e-200, 0, 0, 0, 1e200, 0, 0, 0, 1});
+  WriteHomography(composed / "H1to3p", {1e200, 0, 0, 0, 1, 0, 0, 0, 1e-200});
+  std::vector<ImageSequence> sequences = {ReadImageSequence(composed.string(), SequenceLayout::kHomography)};
+  EXPECT_EQ(ErrorOf([&] { SelectSequencePairs(ParsePairList("2-3"), &sequences); }),
+            composed.string() + ": pair '2-3' composed as H1to3p * H1to2p^-1 is not finite (entries out of range)");
+  EXPECT_EQ(sequences[0].pairs.size(), 2u);  // left as it was
+}
+
 TEST(ImageSequence, PairSelection) {
   const fs::path root = testing::ProcessTempDir("sequence_pairs");
   HomographySequenceFolder(root / "a", 4);
