@@ -10,9 +10,14 @@
    when a build folder is given.
 3. docs/architecture.md names every module folder of slam/ and says where the
    spec that comments cite as "spec §" lives.
+4. The committed reference report is the main job's: results/paper_matrix/report.md
+   is titled after configs/paper_matrix.json, and no committed result under
+   results/ holds an absolute path of a machine (a JSON string, or a CSV or
+   markdown field, starting with "/").
 
 Usage: check_docs.py [BUILD_DIR]     exit 1 with one line per problem
 """
+import json
 import os
 import re
 import subprocess
@@ -33,6 +38,33 @@ def repository_files():
             rel = os.path.relpath(os.path.join(folder, f), ROOT)
             paths.add(rel)
     return paths
+
+
+ABSOLUTE_PATH = re.compile(r"(?:^|[\s(,|\"'`])(/(?:work|home|tmp|root|mnt|var|srv|opt|data)/[^\s,|\"'`)]*)")
+
+
+def results_problems():
+    problems = []
+    report = os.path.join(ROOT, "results", "paper_matrix", "report.md")
+    if os.path.exists(report):
+        with open(report, encoding="utf-8") as text:
+            title = text.readline().strip()
+        if title != "# duskmap report: paper_matrix.json":
+            problems.append(f"results/paper_matrix/report.md: titled '{title}', not the main job's "
+                            "configs/paper_matrix.json")
+    for folder, dirs, files in os.walk(os.path.join(ROOT, "results")):
+        for name in files:
+            if not name.endswith((".json", ".md", ".csv", ".tex")):
+                continue
+            path = os.path.join(folder, name)
+            with open(path, encoding="utf-8") as text:
+                for number, line in enumerate(text, 1):
+                    found = ABSOLUTE_PATH.search(line)
+                    if found:
+                        problems.append(f"{os.path.relpath(path, ROOT)}:{number}: names the machine path "
+                                        f"{found.group(1)}")
+                        break
+    return problems
 
 
 def main():
@@ -69,6 +101,7 @@ def main():
             problems.append(f"docs/architecture.md: the module slam/{module}/ is not described")
     if "rtabmap_algorithms.md" not in architecture:
         problems.append("docs/architecture.md: does not say where the spec cited as \"spec §\" lives")
+    problems += results_problems()
     for problem in problems:
         print(problem)
     return 1 if problems else 0
