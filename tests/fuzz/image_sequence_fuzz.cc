@@ -34,6 +34,7 @@
 #include "slam/core/check.h"
 #include "slam/features/eval_pairs.h"
 #include "slam/features/image_sequence.h"
+#include "tests/fuzz/fuzz_files.h"
 
 namespace {
 
@@ -44,45 +45,16 @@ std::string Root() {
   return std::string(dir ? dir : "/tmp") + "/duskmap_sequence_fuzz_" + std::to_string(getpid());
 }
 
-bool SafePath(const std::string& path) {
-  if (path.empty() || path.size() > 80 || path[0] == '/') return false;
-  for (char c : path) {
-    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-' || c == '/')) {
-      return false;
-    }
-  }
-  for (const auto& part : fs::path(path)) {
-    if (part == "..") return false;
-  }
-  return true;
-}
-
-void WriteBytes(const fs::path& path, const char* data, size_t size) {
-  std::error_code error;
-  fs::create_directories(path.parent_path(), error);
-  std::ofstream(path, std::ios::binary | std::ios::trunc).write(data, static_cast<std::streamsize>(size));
-}
-
 // Writes the input's files under `root`; returns the "!pairs" section, if any.
 std::optional<std::string> WriteFolder(const std::string& text, const std::string& root) {
   std::optional<std::string> pairs;
-  size_t at = text.rfind("@@", 0) == 0 ? 0 : text.find("\n@@");
-  if (at != std::string::npos && at > 0) ++at;  // at the "@@"
-  while (at != std::string::npos) {
-    const size_t header_end = text.find('\n', at);
-    const std::string path =
-        text.substr(at + 2, (header_end == std::string::npos ? text.size() : header_end) - at - 2);
-    const size_t begin = header_end == std::string::npos ? text.size() : header_end + 1;
-    const size_t next = text.find("\n@@", begin == 0 ? 0 : begin - 1);
-    size_t end = next == std::string::npos ? text.size() : std::max(next, begin);
-    if (next == std::string::npos && end > begin && text[end - 1] == '\n') --end;
+  duskmap::fuzz::ForEachSection(text, [&](const std::string& path, size_t begin, size_t end) {
     if (path == "!pairs") {
       pairs = text.substr(begin, end - begin);
-    } else if (SafePath(path)) {
-      WriteBytes(root + "/" + path, text.data() + begin, end - begin);
+    } else if (duskmap::fuzz::SafePath(path)) {
+      duskmap::fuzz::WriteBytes(root + "/" + path, text.data() + begin, end - begin);
     }
-    at = next == std::string::npos ? next : next + 1;
-  }
+  });
   return pairs;
 }
 

@@ -37,6 +37,7 @@
 #include "slam/core/check.h"
 #include "slam/io/synthetic_dataset.h"
 #include "slam/io/tum_dataset.h"
+#include "tests/fuzz/fuzz_files.h"
 
 namespace {
 
@@ -76,52 +77,21 @@ const ImageFiles& Images() {
   return files;
 }
 
-bool SafePath(const std::string& path) {
-  if (path.empty() || path.size() > 80 || path[0] == '/') return false;
-  for (char c : path) {
-    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-' ||
-          c == '/')) {
-      return false;
-    }
-  }
-  for (const auto& part : fs::path(path)) {
-    if (part == "..") return false;
-  }
-  return true;
-}
-
-void WriteBytes(const fs::path& path, const char* data, size_t size) {
-  std::error_code error;
-  fs::create_directories(path.parent_path(), error);
-  std::ofstream(path, std::ios::binary | std::ios::trunc)
-      .write(data, static_cast<std::streamsize>(size));
-}
-
 void WriteFolder(const uint8_t* data, size_t size, const std::string& root) {
   const ImageFiles& images = Images();
   for (const std::string& folder : {root, root + "/1"}) {
     for (int i = 0; i < kImages; ++i) {
       const std::string name = std::to_string(i) + ".png";
-      WriteBytes(folder + "/rgb/" + name, reinterpret_cast<const char*>(images.rgb[i].data()),
+      duskmap::fuzz::WriteBytes(folder + "/rgb/" + name, reinterpret_cast<const char*>(images.rgb[i].data()),
                  images.rgb[i].size());
-      WriteBytes(folder + "/depth/" + name, reinterpret_cast<const char*>(images.depth[i].data()),
+      duskmap::fuzz::WriteBytes(folder + "/depth/" + name, reinterpret_cast<const char*>(images.depth[i].data()),
                  images.depth[i].size());
     }
   }
   const std::string text(reinterpret_cast<const char*>(data), size);
-  size_t at = text.rfind("@@", 0) == 0 ? 0 : text.find("\n@@");
-  if (at != std::string::npos && at > 0) ++at;  // at the "@@"
-  while (at != std::string::npos) {
-    const size_t header_end = text.find('\n', at);
-    const std::string path =
-        text.substr(at + 2, (header_end == std::string::npos ? text.size() : header_end) - at - 2);
-    const size_t begin = header_end == std::string::npos ? text.size() : header_end + 1;
-    const size_t next = text.find("\n@@", begin == 0 ? 0 : begin - 1);
-    size_t end = next == std::string::npos ? text.size() : std::max(next, begin);
-    if (next == std::string::npos && end > begin && text[end - 1] == '\n') --end;
-    if (SafePath(path)) WriteBytes(root + "/" + path, text.data() + begin, end - begin);
-    at = next == std::string::npos ? next : next + 1;
-  }
+  duskmap::fuzz::ForEachSection(text, [&](const std::string& path, size_t begin, size_t end) {
+    if (duskmap::fuzz::SafePath(path)) duskmap::fuzz::WriteBytes(root + "/" + path, text.data() + begin, end - begin);
+  });
 }
 
 bool Finite(const duskmap::Rigid3d& pose) { return pose.IsFinite(); }
