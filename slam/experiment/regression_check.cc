@@ -4,6 +4,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -52,9 +53,11 @@ double ToDouble(const std::string& text, const std::string& where, const char* c
   return value;
 }
 
-// A percentage in [0, 100].
-double ToPercent(const std::string& text, const std::string& where, const char* column) {
+// A percentage in [0, 100]; with `no_value`, that value too (correct_pct's -1).
+double ToPercent(const std::string& text, const std::string& where, const char* column,
+                 std::optional<double> no_value = std::nullopt) {
   const double value = ToDouble(text, where, column);
+  if (no_value && value == *no_value) return value;
   SLAM_THROW_IF_NOT(InputError, value >= 0.0 && value <= 100.0)
       << where << ": " << column << ": " << text << " is outside [0, 100]";
   return value;
@@ -103,10 +106,7 @@ std::vector<CellRates> ParseCellRates(std::istream& in, const std::string& path)
                           std::numeric_limits<int>::max());
     cell.relocalized_pct = ToPercent(f[column["relocalized_pct"]], where, "relocalized_pct");
     // -1: the session has no ground truth.
-    const std::string& correct = f[column["correct_pct"]];
-    cell.correct_pct = ToDouble(correct, where, "correct_pct") == -1.0
-                           ? -1.0
-                           : ToPercent(correct, where, "correct_pct");
+    cell.correct_pct = ToPercent(f[column["correct_pct"]], where, "correct_pct", -1.0);
     cell.wrong = ToCount(f[column["wrong"]], where, "wrong", 0, cell.frames);
     const auto [first, added] = line_of_cell.emplace(cell.Key(), number);
     SLAM_THROW_IF_NOT(InputError, added) << where << ": cell '" << cell.Key()

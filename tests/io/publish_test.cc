@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "slam/core/check.h"
+#include "tests/testing/read_text.h"
 #include "tests/testing/temp_dir.h"
 
 namespace duskmap {
@@ -21,13 +22,8 @@ namespace {
 namespace fs = std::filesystem;
 
 using testing::ProcessTempDir;
+using testing::ReadText;
 
-std::string Contents(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 std::set<std::string> Names(const fs::path& folder) {
   std::set<std::string> names;
@@ -46,7 +42,7 @@ std::string MessageOf(const std::function<void()>& f) {
 
 // A file whose first line is "mine": what the tests' --overwrite may replace.
 OwnedOutput Mine() {
-  return {"a file of mine", [](const fs::path& p) { return Contents(p).rfind("mine", 0) == 0; }};
+  return {"a file of mine", [](const fs::path& p) { return ReadText(p).rfind("mine", 0) == 0; }};
 }
 
 PublishTarget Target(const fs::path& path, bool overwrite) {
@@ -74,7 +70,7 @@ pid_t DeadPid() {
 TEST(Publish, NoClobberPublishesAFreeName) {
   const fs::path root = ProcessTempDir("publish_free");
   WriteAndPublish(Target(root / "out.txt", false), [](std::ostream& out) { out << "new\n"; });
-  EXPECT_EQ(Contents(root / "out.txt"), "new\n");
+  EXPECT_EQ(ReadText(root / "out.txt"), "new\n");
   EXPECT_EQ(Names(root), std::set<std::string>{"out.txt"});  // the temporary file is gone
 }
 
@@ -91,7 +87,7 @@ TEST(Publish, NoClobberRefusesAFileThatAppeared) {
   EXPECT_EQ(message, path.string() +
                          ": appeared while this command ran (--output); nothing was replaced "
                          "(pass --overwrite to replace it)");
-  EXPECT_EQ(Contents(path), "notes");
+  EXPECT_EQ(ReadText(path), "notes");
   EXPECT_EQ(Names(root), std::set<std::string>{"out.txt"});
 }
 
@@ -100,7 +96,7 @@ TEST(Publish, OverwriteReplacesOnlyWhatTheOwnerRecognises) {
   const fs::path path = root / "out.txt";
   std::ofstream(path) << "mine, old";
   WriteAndPublish(Target(path, true), [](std::ostream& out) { out << "mine, new"; });
-  EXPECT_EQ(Contents(path), "mine, new");
+  EXPECT_EQ(ReadText(path), "mine, new");
   EXPECT_EQ(Names(root), std::set<std::string>{"out.txt"});
   // The owner is tested right before the replace: what appeared is kept.
   const AppearsBeforePublish hook([&](const std::string&) { std::ofstream(path) << "notes"; });
@@ -110,7 +106,7 @@ TEST(Publish, OverwriteReplacesOnlyWhatTheOwnerRecognises) {
   EXPECT_NE(message.find(path.string() + ": not a file of mine, so --overwrite will not replace it"),
             std::string::npos)
       << message;
-  EXPECT_EQ(Contents(path), "notes");
+  EXPECT_EQ(ReadText(path), "notes");
   EXPECT_EQ(Names(root), std::set<std::string>{"out.txt"});
 }
 
@@ -159,7 +155,7 @@ TEST(Publish, ConcurrentPublishersExactlyOneWins) {
     }
   }
   EXPECT_EQ(winners, 1);
-  EXPECT_EQ(Contents(path), "writer " + std::to_string(winner) + std::string(100000, 'x'));
+  EXPECT_EQ(ReadText(path), "writer " + std::to_string(winner) + std::string(100000, 'x'));
   EXPECT_EQ(Names(root), std::set<std::string>{"out.txt"});
 }
 
@@ -180,7 +176,7 @@ TEST(Publish, FolderNoClobberRefusesAFolderThatAppeared) {
   EXPECT_TRUE(fs::exists(staging / "new.txt"));  // kept: its owner removes it
   fs::remove(path);
   PublishFolder(staging.string(), Target(path, false));
-  EXPECT_EQ(Contents(path / "new.txt"), "new");
+  EXPECT_EQ(ReadText(path / "new.txt"), "new");
   EXPECT_EQ(Names(root), std::set<std::string>{"out"});
 }
 
@@ -197,7 +193,7 @@ TEST(Publish, FolderOverwriteTestsTheOwnerOfWhatIsThere) {
   EXPECT_NE(MessageOf([&] { PublishFolder(staging.string(), target); })
                 .find(path.string() + ": not an output, so --overwrite will not replace it (left as it was)"),
             std::string::npos);
-  EXPECT_EQ(Contents(path / "thesis.tex"), "years of work");
+  EXPECT_EQ(ReadText(path / "thesis.tex"), "years of work");
   EXPECT_EQ(Names(root), (std::set<std::string>{"out", "out.tmp-1"}));
   fs::remove_all(path);
   fs::create_directories(path);
@@ -227,7 +223,7 @@ TEST(Publish, AFolderMovedAsideByAKilledRunIsPutBack) {
   fs::create_directories(root / aside);
   std::ofstream(root / aside / "data.txt") << "earlier output";
   RecoverStaleAside((root / "out").string());
-  EXPECT_EQ(Contents(root / "out" / "data.txt"), "earlier output");
+  EXPECT_EQ(ReadText(root / "out" / "data.txt"), "earlier output");
   EXPECT_EQ(Names(root), std::set<std::string>{"out"});
   // Once replaced (the new one is in place), a stale old folder is removed.
   fs::create_directories(root / aside);

@@ -5,14 +5,13 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "tests/testing/read_text.h"
 #include "tests/testing/run_duskmap.h"
 
 namespace duskmap::testing {
@@ -26,14 +25,6 @@ inline void ExpectOneLineError(const CliResult& r, const std::vector<std::string
   for (const std::string& needle : needles) {
     EXPECT_NE(r.output.find(needle), std::string::npos) << "missing '" << needle << "' in " << r.output;
   }
-}
-
-// The bytes of a file ("" when it cannot be read).
-inline std::string ReadText(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 // Every file under `root` (or `root` itself) with its bytes.
