@@ -12,6 +12,7 @@ PACKAGES=(
   python3 python3-matplotlib python3-numpy python3-onnx
   python3-h5py python3-opencv  # tests write h5 files as hloc does; the external-feature example
   clang libclang-rt-14-dev  # libFuzzer targets under tests/fuzz (docs/real_data.md)
+  slurm-wlm munge  # the one-node cluster of the slurm tests (scripts/slurm_local.sh)
 )
 
 missing=()
