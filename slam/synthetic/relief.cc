@@ -5,7 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "slam/core/check.h"
-#include "slam/synthetic/textures.h"
+#include "slam/synthetic/value_noise.h"
 
 namespace duskmap {
 

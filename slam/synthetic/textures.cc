@@ -13,6 +13,7 @@
 #include "slam/io/path_status.h"
 #include "slam/synthetic/photo_materials.h"
 #include "slam/synthetic/relief.h"
+#include "slam/synthetic/value_noise.h"
 
 namespace duskmap {
 namespace {
@@ -331,16 +332,6 @@ cv::Mat MakeFoliage(cv::Size size, cv::RNG& rng) {
 }
 
 }  // namespace
-
-cv::Mat ValueNoise(cv::Size size, double cell_texels, cv::RNG& rng) {
-  const int gw = std::max(2, static_cast<int>(size.width / cell_texels) + 2);
-  const int gh = std::max(2, static_cast<int>(size.height / cell_texels) + 2);
-  cv::Mat grid(gh, gw, CV_32F);
-  rng.fill(grid, cv::RNG::UNIFORM, -1.0, 1.0);
-  cv::Mat noise;
-  cv::resize(grid, noise, size, 0, 0, cv::INTER_CUBIC);
-  return noise;
-}
 
 int TexelCount(double size_m, double texel_m) {
   return std::max(2, static_cast<int>(std::lround(size_m / texel_m)));

@@ -70,10 +70,6 @@ int TexelCount(double size_m, double texel_m);
 SurfaceTexture MakeTexture(const TextureRequest& request, const std::vector<cv::Mat>& user_images,
                            const PhotoMaterial* photo = nullptr);
 
-// Smooth value noise in [-1, 1]: a coarse random grid of one cell per
-// `cell_texels` texels, upsampled bicubically.
-cv::Mat ValueNoise(cv::Size size, double cell_texels, cv::RNG& rng);
-
 // Loads every readable .png/.jpg/.jpeg in `folder` (sorted by name); throws
 // InputError naming the folder when it is missing or holds no image.
 std::vector<cv::Mat> LoadUserTextures(const std::string& folder);
