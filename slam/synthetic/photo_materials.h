@@ -15,7 +15,7 @@
 
 #include "slam/synthetic/relief.h"
 #include "slam/synthetic/scene.h"
-#include "slam/synthetic/textures.h"
+#include "slam/synthetic/texture_request.h"
 
 namespace duskmap {
 

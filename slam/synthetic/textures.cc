@@ -333,10 +333,6 @@ cv::Mat MakeFoliage(cv::Size size, cv::RNG& rng) {
 
 }  // namespace
 
-int TexelCount(double size_m, double texel_m) {
-  return std::max(2, static_cast<int>(std::lround(size_m / texel_m)));
-}
-
 double TexelSizeM(TextureKind kind) {
   switch (kind) {
     case TextureKind::kPaint: return 0.02;
