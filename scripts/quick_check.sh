@@ -12,21 +12,8 @@ cd "$(dirname "$0")/.."
 duskmap=./build/experiments/duskmap
 [ -x "$duskmap" ] || { echo "$0: $duskmap: not built (run scripts/build.sh)" >&2; exit 1; }
 mkdir -p build/quick
-/usr/bin/python3 - configs/sunset_apartment.json configs/quick/dataset_overrides.json \
-  build/quick/sunset_quick.json <<'PY'
-import json, sys
-base = json.load(open(sys.argv[1]))
-overrides = json.load(open(sys.argv[2]))
-overrides.pop("_comment", None)
-def merge(into, values):
-    for key, value in values.items():
-        if isinstance(value, dict):
-            merge(into.setdefault(key, {}), value)
-        else:
-            into[key] = value
-merge(base, overrides)
-json.dump(base, open(sys.argv[3], "w"), indent=1)
-PY
+/usr/bin/python3 scripts/quick_dataset_config.py configs/sunset_apartment.json \
+  configs/quick/dataset_overrides.json build/quick/sunset_quick.json
 start=$(date +%s)
 "$duskmap" generate --config build/quick/sunset_quick.json --output data/sunset_quick --overwrite
 "$duskmap" run configs/quick_matrix.json --output out/quick --overwrite --jobs "$(nproc 2>/dev/null || echo 2)"

@@ -107,7 +107,7 @@ EOF
 start_daemons() {
   # A daemon started afresh starts a fresh log, so that the log names this start's error.
   if [ -z "$(live_pid "$state/munge/munged.pid" munged)" ]; then
-    : >"$state/munge/munged.log"
+    rm -f "$state/munge/munged.log"  # munged creates it, owned by munge
     runuser -u munge -- munged --socket="$state/munge/munge.socket" \
       --key-file="$state/munge/munge.key" --pid-file="$state/munge/munged.pid" \
       --log-file="$state/munge/munged.log" --seed-file="$state/munge/munged.seed" \

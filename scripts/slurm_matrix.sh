@@ -2,42 +2,91 @@
 # Spreads an experiment matrix over a Slurm cluster as a job array, then merges
 # the shards into one report.
 #
-#   scripts/slurm_matrix.sh CONFIG SHARDS [RESULTS_ROOT]
+#   scripts/slurm_matrix.sh CONFIG SHARDS [RESULTS_ROOT] [--only I[,J...]] [--wait]
 #
-# Submits SHARDS array tasks; task i runs `duskmap run CONFIG --shard i/SHARDS`
-# into RESULTS_ROOT/shard-i (resumable: a re-submitted task skips finished
-# jobs), and a final job, started once every task succeeded, runs
-# `duskmap report` over all shard folders into RESULTS_ROOT/report.
+# Submits SHARDS array tasks (scripts/slurm_shard.sh); task i runs
+# `duskmap run CONFIG --shard i/SHARDS` into RESULTS_ROOT/shard-i (resumable: a
+# resubmitted task skips finished jobs) and logs to RESULTS_ROOT/logs/shard-i.log.
+# A merge job (scripts/slurm_merge.sh) starts once every task has ended,
+# successful or not: it names each shard that failed or was killed, with its
+# log, or runs `duskmap report` over all shard folders into RESULTS_ROOT/report.
 # Every shard builds the maps it owns and extracts only the features those
 # maps and their localization sessions need, so shards share no files.
-# Pass extra sbatch options (partition, account, time) through SBATCH_ARGS.
+#
+#   --only I[,J...]  resubmits only these shards (after a failure), and the merge again
+#   --wait           waits for the merge job and exits with its status
+#
+# SBATCH_ARGS adds sbatch options (partition, account, time); DUSKMAP_BIN is
+# the program (default build/experiments/duskmap, at the same path on every node); DUSKMAP_JOBS
+# (default 2) is each task's --jobs and CPUs; DUSKMAP_FEATURE_CACHE is each
+# task's --feature-cache (a folder on the node's local disk); DUSKMAP_REPORT_ARGS
+# adds `duskmap report` options. docs/experiments.md: running on a real cluster.
 set -euo pipefail
 
-if [ $# -lt 2 ]; then
-  echo "usage: $0 CONFIG SHARDS [RESULTS_ROOT]" >&2
-  exit 2
+usage() { echo "usage: $0 CONFIG SHARDS [RESULTS_ROOT] [--only I[,J...]] [--wait]" >&2; exit 2; }
+positional=() only="" wait=0
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --only) [ $# -ge 2 ] || usage; only=$2; shift 2;;
+    --wait) wait=1; shift;;
+    -*) usage;;
+    *) positional+=("$1"); shift;;
+  esac
+done
+[ ${#positional[@]} -ge 2 ] && [ ${#positional[@]} -le 3 ] || usage
+fail() { echo "$0: $1" >&2; exit "${2:-1}"; }
+
+[ -f "${positional[0]}" ] || fail "${positional[0]}: no such config file" 2
+config=$(realpath "${positional[0]}")
+shards=${positional[1]}
+case "$shards" in ''|*[!0-9]*|0) fail "SHARDS $shards: expected a positive integer" 2;; esac
+root=$(realpath -m "${positional[2]:-results-slurm}")
+array="0-$((shards - 1))"
+if [ -n "$only" ]; then
+  IFS=, read -r -a picked <<<"$only"
+  [ ${#picked[@]} -gt 0 ] || fail "--only $only: expected shard indices I[,J...]" 2
+  for i in "${picked[@]}"; do
+    case "$i" in ''|*[!0-9]*) fail "--only $only: expected shard indices I[,J...]" 2;; esac
+    [ "$i" -lt "$shards" ] || fail "--only $only: shard $i is out of range (0 to $((shards - 1)))" 2
+  done
+  array=$only
 fi
-config=$(realpath "$1")
-shards=$2
-root=$(realpath -m "${3:-results-slurm}")
 repo=$(cd "$(dirname "$0")/.." && pwd)
-duskmap="$repo/build/experiments/duskmap"
-[ -x "$duskmap" ] || { echo "$0: $duskmap: not built (run scripts/build.sh)" >&2; exit 1; }
-case "$shards" in ''|*[!0-9]*) echo "$0: SHARDS must be a positive integer" >&2; exit 2;; esac
+duskmap=${DUSKMAP_BIN:-$repo/build/experiments/duskmap}
+[ -x "$duskmap" ] || fail "$duskmap: not built (run scripts/build.sh)"
+command -v sbatch >/dev/null || fail "sbatch: not installed (a Slurm client is needed; scripts/slurm_local.sh starts a local cluster)"
+jobs=${DUSKMAP_JOBS:-2}
 mkdir -p "$root/logs"
+# A resubmitted shard's earlier status goes now, so that it cannot stand for
+# a task that is cancelled before it starts.
+IFS=, read -r -a submitted <<<"${only:-$(seq -s, 0 $((shards - 1)))}"
+for i in "${submitted[@]}"; do rm -f "$root/logs/shard-$i.exit"; done
+rm -f "$root/logs/report.exit"
 
+# shellcheck disable=SC2086
 array_id=$(sbatch --parsable ${SBATCH_ARGS:-} \
-  --job-name=duskmap-matrix --array=0-$((shards - 1)) --cpus-per-task=2 \
-  --output="$root/logs/shard-%a.log" \
-  --wrap="\"$duskmap\" run \"$config\" --shard \$SLURM_ARRAY_TASK_ID/$shards \
-          --output \"$root/shard-\$SLURM_ARRAY_TASK_ID\" --jobs 2 --resume")
-
-shard_dirs=""
-for ((i = 0; i < shards; ++i)); do shard_dirs+=" \"$root/shard-$i\""; done
+  --job-name=duskmap-matrix --array="$array" --cpus-per-task="$jobs" \
+  --output="$root/logs/shard-%a.log" --open-mode=append \
+  "$repo/scripts/slurm_shard.sh" "$duskmap" "$config" "$shards" "$root")
+array_id=${array_id%%;*}
+# shellcheck disable=SC2086
 report_id=$(sbatch --parsable ${SBATCH_ARGS:-} \
-  --job-name=duskmap-report --dependency=afterok:"$array_id" \
+  --job-name=duskmap-report --dependency=afterany:"$array_id" \
   --output="$root/logs/report.log" \
-  --wrap="\"$duskmap\" report \"$config\" --results $shard_dirs --output \"$root/report\"")
+  "$repo/scripts/slurm_merge.sh" "$duskmap" "$config" "$shards" "$root")
+report_id=${report_id%%;*}
 
-echo "submitted shards as array job $array_id and the report as job $report_id"
-echo "results: $root/shard-*/, report: $root/report/report.md"
+echo "submitted shards $array as array job $array_id and the merge as job $report_id"
+echo "results: $root/shard-*/, logs: $root/logs/, report: $root/report/"
+[ $wait = 1 ] || exit 0
+
+# The merge job has ended when Slurm no longer lists it as pending or running.
+while squeue -h -j "$report_id" -t PD,R,CG,CF,S 2>/dev/null | grep -q .; do sleep 2; done
+[ -f "$root/logs/report.exit" ] ||
+  fail "the merge job $report_id ended without a status (killed or cancelled): read $root/logs/report.log"
+rc=$(cat "$root/logs/report.exit")
+if [ "$rc" != 0 ]; then
+  grep -E '^(slurm_merge.sh|duskmap): ' "$root/logs/report.log" | tail -n "$((shards + 2))" >&2 || true
+  fail "the merge job $report_id failed (status $rc): read $root/logs/report.log" "$rc"
+fi
+echo "merged: $root/report/"
