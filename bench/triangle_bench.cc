@@ -10,8 +10,8 @@
 
 #include <benchmark/benchmark.h>
 
-#include "slam/synthetic/triangle_bvh.h"
-#include "slam/synthetic/triangle_raster.h"
+#include "slam/synthetic/raster/triangle_bvh.h"
+#include "slam/synthetic/raster/triangle_raster.h"
 
 namespace duskmap {
 namespace {

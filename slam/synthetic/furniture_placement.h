@@ -20,7 +20,7 @@
 
 #include "slam/synthetic/furniture_catalog.h"
 #include "slam/synthetic/obj_mesh.h"
-#include "slam/synthetic/triangle_mesh.h"
+#include "slam/synthetic/raster/triangle_mesh.h"
 
 namespace duskmap {
 

@@ -22,7 +22,7 @@
 
 #include "slam/io/image_header.h"
 #include "slam/synthetic/mesh_files.h"
-#include "slam/synthetic/triangle_mesh.h"
+#include "slam/synthetic/raster/triangle_mesh.h"
 
 namespace duskmap {
 

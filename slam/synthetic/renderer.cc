@@ -5,8 +5,8 @@
 #include <optional>
 
 #include "slam/core/check.h"
-#include "slam/synthetic/mip_texture.h"
-#include "slam/synthetic/triangle_raster.h"
+#include "slam/synthetic/raster/mip_texture.h"
+#include "slam/synthetic/raster/triangle_raster.h"
 
 namespace duskmap {
 

@@ -10,8 +10,8 @@
 #include <opencv2/core.hpp>
 
 #include "slam/core/rigid3.h"
+#include "slam/synthetic/raster/triangle_bvh.h"
 #include "slam/synthetic/scene_mesh.h"
-#include "slam/synthetic/triangle_bvh.h"
 
 namespace duskmap {
 

@@ -17,9 +17,9 @@
 #include <opencv2/core.hpp>
 
 #include "slam/core/rigid3.h"
-#include "slam/synthetic/mip_texture.h"
-#include "slam/synthetic/triangle_bvh.h"
-#include "slam/synthetic/triangle_mesh.h"
+#include "slam/synthetic/raster/mip_texture.h"
+#include "slam/synthetic/raster/triangle_bvh.h"
+#include "slam/synthetic/raster/triangle_mesh.h"
 
 namespace duskmap {
 

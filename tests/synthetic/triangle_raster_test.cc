@@ -1,4 +1,4 @@
-#include "slam/synthetic/triangle_raster.h"
+#include "slam/synthetic/raster/triangle_raster.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 
 #include "slam/core/check.h"
 #include "slam/core/rigid3.h"
-#include "slam/synthetic/triangle_bvh.h"
+#include "slam/synthetic/raster/triangle_bvh.h"
 
 namespace duskmap {
 namespace {

@@ -1,4 +1,4 @@
-#include "slam/synthetic/triangle_mesh.h"
+#include "slam/synthetic/raster/triangle_mesh.h"
 
 #include <set>
 

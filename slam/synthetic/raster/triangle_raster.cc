@@ -1,4 +1,4 @@
-#include "slam/synthetic/triangle_raster.h"
+#include "slam/synthetic/raster/triangle_raster.h"
 
 #include <algorithm>
 #include <cmath>

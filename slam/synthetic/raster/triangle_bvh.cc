@@ -1,4 +1,4 @@
-#include "slam/synthetic/triangle_bvh.h"
+#include "slam/synthetic/raster/triangle_bvh.h"
 
 #include <algorithm>
 #include <cmath>

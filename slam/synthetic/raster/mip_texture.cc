@@ -1,4 +1,4 @@
-#include "slam/synthetic/mip_texture.h"
+#include "slam/synthetic/raster/mip_texture.h"
 
 #include <algorithm>
 #include <cmath>
