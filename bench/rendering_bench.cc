@@ -11,7 +11,7 @@
 #include "bench/bench_temp_dir.h"
 #include "slam/io/tum_writer.h"
 #include "slam/synthetic/apartment.h"
-#include "slam/synthetic/furniture_catalog.h"
+#include "slam/synthetic/assets/furniture_catalog.h"
 #include "slam/synthetic/generator_config.h"
 #include "slam/synthetic/route.h"
 #include "slam/synthetic/session_simulator.h"

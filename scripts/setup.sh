@@ -8,7 +8,7 @@ PACKAGES=(
   nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
   libsqlite3-dev libcli11-dev libzip-dev
   libhdf5-dev  # hloc-layout feature files, slam/features/h5_feature_file.h
-  sweethome3d-furniture  # real furniture models, slam/synthetic/furniture_catalog.h
+  sweethome3d-furniture  # real furniture models, slam/synthetic/assets/furniture_catalog.h
   python3 python3-matplotlib python3-numpy python3-onnx
   python3-h5py python3-opencv  # tests write h5 files as hloc does; the external-feature example
   clang libclang-rt-14-dev  # libFuzzer targets under tests/fuzz (docs/real_data.md)

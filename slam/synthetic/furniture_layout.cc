@@ -6,8 +6,8 @@
 #include <map>
 
 #include "slam/core/check.h"
-#include "slam/synthetic/furniture_catalog.h"
-#include "slam/synthetic/furniture_placement.h"
+#include "slam/synthetic/assets/furniture_catalog.h"
+#include "slam/synthetic/assets/furniture_placement.h"
 
 namespace duskmap {
 

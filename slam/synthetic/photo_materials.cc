@@ -10,8 +10,8 @@
 
 #include "slam/core/check.h"
 #include "slam/core/random.h"
-#include "slam/synthetic/furniture_catalog.h"
-#include "slam/synthetic/mesh_texture.h"
+#include "slam/synthetic/assets/furniture_catalog.h"
+#include "slam/synthetic/assets/mesh_texture.h"
 
 namespace duskmap {
 namespace {

@@ -1,4 +1,4 @@
-#include "slam/synthetic/archive_path.h"
+#include "slam/synthetic/assets/archive_path.h"
 
 #include <gtest/gtest.h>
 

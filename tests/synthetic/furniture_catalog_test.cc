@@ -1,10 +1,10 @@
-#include "slam/synthetic/furniture_catalog.h"
+#include "slam/synthetic/assets/furniture_catalog.h"
 
 #include <gtest/gtest.h>
 
 #include "mesh_test_files.h"
 #include "slam/core/check.h"
-#include "slam/synthetic/obj_mesh.h"
+#include "slam/synthetic/assets/obj_mesh.h"
 
 namespace duskmap {
 namespace {

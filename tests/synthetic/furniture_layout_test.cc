@@ -7,7 +7,7 @@
 #include "mesh_test_files.h"
 #include "slam/core/check.h"
 #include "slam/synthetic/apartment.h"
-#include "slam/synthetic/furniture_catalog.h"
+#include "slam/synthetic/assets/furniture_catalog.h"
 #include "slam/synthetic/generator_config.h"
 
 namespace duskmap {

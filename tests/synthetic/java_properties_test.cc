@@ -1,4 +1,4 @@
-#include "slam/synthetic/java_properties.h"
+#include "slam/synthetic/assets/java_properties.h"
 
 #include <gtest/gtest.h>
 

@@ -17,7 +17,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "slam/core/check.h"
-#include "slam/synthetic/mesh_files.h"
+#include "slam/synthetic/assets/mesh_files.h"
 #include "tests/testing/temp_dir.h"
 
 namespace duskmap {

@@ -1,4 +1,4 @@
-#include "slam/synthetic/mesh_texture.h"
+#include "slam/synthetic/assets/mesh_texture.h"
 
 #include <gtest/gtest.h>
 

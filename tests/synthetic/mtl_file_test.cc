@@ -1,4 +1,4 @@
-#include "slam/synthetic/mtl_file.h"
+#include "slam/synthetic/assets/mtl_file.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "slam/synthetic/obj_mesh.h"
+#include "slam/synthetic/assets/obj_mesh.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "slam/synthetic/zip_archive.h"
+#include "slam/synthetic/assets/zip_archive.h"
 
 #include <gtest/gtest.h>
 

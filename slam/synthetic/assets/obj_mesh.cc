@@ -1,4 +1,4 @@
-#include "slam/synthetic/obj_mesh.h"
+#include "slam/synthetic/assets/obj_mesh.h"
 
 #include <algorithm>
 #include <array>
@@ -8,10 +8,10 @@
 #include <unordered_map>
 
 #include "slam/core/check.h"
-#include "slam/synthetic/archive_path.h"
-#include "slam/synthetic/mesh_texture.h"
-#include "slam/synthetic/mtl_file.h"
-#include "slam/synthetic/obj_text.h"
+#include "slam/synthetic/assets/archive_path.h"
+#include "slam/synthetic/assets/mesh_texture.h"
+#include "slam/synthetic/assets/mtl_file.h"
+#include "slam/synthetic/assets/obj_text.h"
 
 namespace duskmap {
 namespace {

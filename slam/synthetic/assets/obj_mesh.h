@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "slam/io/image_header.h"
-#include "slam/synthetic/mesh_files.h"
+#include "slam/synthetic/assets/mesh_files.h"
 #include "slam/synthetic/raster/triangle_mesh.h"
 
 namespace duskmap {

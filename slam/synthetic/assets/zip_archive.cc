@@ -1,4 +1,4 @@
-#include "slam/synthetic/zip_archive.h"
+#include "slam/synthetic/assets/zip_archive.h"
 
 #include <zip.h>
 
@@ -7,7 +7,7 @@
 #include <optional>
 
 #include "slam/core/check.h"
-#include "slam/synthetic/archive_path.h"
+#include "slam/synthetic/assets/archive_path.h"
 
 namespace duskmap {
 namespace {

@@ -18,8 +18,8 @@
 
 #include <Eigen/Core>
 
-#include "slam/synthetic/furniture_catalog.h"
-#include "slam/synthetic/obj_mesh.h"
+#include "slam/synthetic/assets/furniture_catalog.h"
+#include "slam/synthetic/assets/obj_mesh.h"
 #include "slam/synthetic/raster/triangle_mesh.h"
 
 namespace duskmap {

@@ -1,9 +1,9 @@
-#include "slam/synthetic/mtl_file.h"
+#include "slam/synthetic/assets/mtl_file.h"
 
 #include <set>
 
 #include "slam/core/check.h"
-#include "slam/synthetic/obj_text.h"
+#include "slam/synthetic/assets/obj_text.h"
 
 namespace duskmap {
 namespace {

@@ -1,4 +1,4 @@
-#include "slam/synthetic/obj_text.h"
+#include "slam/synthetic/assets/obj_text.h"
 
 #include <charconv>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "slam/synthetic/furniture_placement.h"
+#include "slam/synthetic/assets/furniture_placement.h"
 
 #include <Eigen/Dense>
 

@@ -14,7 +14,7 @@
 
 #include <Eigen/Core>
 
-#include "slam/synthetic/mesh_files.h"
+#include "slam/synthetic/assets/mesh_files.h"
 
 namespace duskmap {
 

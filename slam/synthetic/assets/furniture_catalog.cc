@@ -1,4 +1,4 @@
-#include "slam/synthetic/furniture_catalog.h"
+#include "slam/synthetic/assets/furniture_catalog.h"
 
 #include <charconv>
 #include <cmath>
@@ -9,9 +9,9 @@
 #include <Eigen/Dense>
 
 #include "slam/core/check.h"
-#include "slam/synthetic/archive_path.h"
-#include "slam/synthetic/java_properties.h"
-#include "slam/synthetic/zip_archive.h"
+#include "slam/synthetic/assets/archive_path.h"
+#include "slam/synthetic/assets/java_properties.h"
+#include "slam/synthetic/assets/zip_archive.h"
 
 namespace duskmap {
 namespace {
