@@ -10,10 +10,10 @@
 
 #include "bench/bench_temp_dir.h"
 #include "slam/io/tum_writer.h"
-#include "slam/synthetic/apartment.h"
 #include "slam/synthetic/assets/furniture_catalog.h"
 #include "slam/synthetic/generator_config.h"
 #include "slam/synthetic/route.h"
+#include "slam/synthetic/scene/apartment.h"
 #include "slam/synthetic/session_simulator.h"
 
 namespace duskmap {

@@ -10,8 +10,8 @@
 #include <opencv2/core.hpp>
 
 #include "slam/synthetic/renderer.h"
+#include "slam/synthetic/scene/scene.h"
 #include "slam/synthetic/sensor_noise.h"
-#include "slam/synthetic/scene.h"
 
 namespace duskmap {
 

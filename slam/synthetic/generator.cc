@@ -12,16 +12,16 @@
 #include <nlohmann/json.hpp>
 
 #include "slam/core/check.h"
-#include "slam/core/system_error.h"
 #include "slam/core/random.h"
+#include "slam/core/system_error.h"
 #include "slam/core/timer.h"
 #include "slam/io/folder_commit.h"
 #include "slam/io/synthetic_dataset.h"
 #include "slam/io/tum_writer.h"
-#include "slam/synthetic/apartment.h"
 #include "slam/synthetic/odometry.h"
 #include "slam/synthetic/preview.h"
 #include "slam/synthetic/route.h"
+#include "slam/synthetic/scene/apartment.h"
 #include "slam/synthetic/session_simulator.h"
 
 namespace duskmap {

@@ -7,12 +7,12 @@
 #include <string>
 #include <vector>
 
-#include "slam/synthetic/apartment.h"
 #include "slam/synthetic/camera_model.h"
 #include "slam/synthetic/depth_sensor.h"
 #include "slam/synthetic/lighting.h"
 #include "slam/synthetic/odometry.h"
 #include "slam/synthetic/route.h"
+#include "slam/synthetic/scene/apartment.h"
 
 namespace duskmap {
 

@@ -12,7 +12,7 @@
 #include <opencv2/core.hpp>
 
 #include "slam/synthetic/mesh_sun.h"
-#include "slam/synthetic/scene.h"
+#include "slam/synthetic/scene/scene.h"
 #include "slam/synthetic/solar.h"
 
 namespace duskmap {

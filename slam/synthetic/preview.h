@@ -15,7 +15,7 @@
 #include <opencv2/core.hpp>
 
 #include "slam/synthetic/generator_config.h"
-#include "slam/synthetic/scene.h"
+#include "slam/synthetic/scene/scene.h"
 
 namespace duskmap {
 

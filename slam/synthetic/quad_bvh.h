@@ -11,7 +11,7 @@
 
 #include <Eigen/Core>
 
-#include "slam/synthetic/scene.h"
+#include "slam/synthetic/scene/scene.h"
 
 namespace duskmap {
 

@@ -15,7 +15,7 @@
 #include "slam/core/camera.h"
 #include "slam/core/rigid3.h"
 #include "slam/synthetic/lighting.h"
-#include "slam/synthetic/scene.h"
+#include "slam/synthetic/scene/scene.h"
 
 namespace duskmap {
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "slam/core/rigid3.h"
-#include "slam/synthetic/apartment.h"
+#include "slam/synthetic/scene/apartment.h"
 
 namespace duskmap {
 

@@ -18,10 +18,10 @@
 #include "slam/features/feature_extractor.h"
 #include "slam/features/feature_options.h"
 #include "slam/registration/transform_estimation.h"
-#include "slam/synthetic/apartment.h"
 #include "slam/synthetic/generator_config.h"
 #include "slam/synthetic/lighting.h"
 #include "slam/synthetic/route.h"
+#include "slam/synthetic/scene/apartment.h"
 #include "slam/synthetic/session_simulator.h"
 
 namespace duskmap {

@@ -16,10 +16,10 @@
 #include "slam/features/feature_extractor.h"
 #include "slam/features/feature_options.h"
 #include "slam/retrieval/loop_closure_detector.h"
-#include "slam/synthetic/apartment.h"
 #include "slam/synthetic/generator_config.h"
 #include "slam/synthetic/route.h"
-#include "slam/synthetic/scene.h"
+#include "slam/synthetic/scene/apartment.h"
+#include "slam/synthetic/scene/scene.h"
 #include "slam/synthetic/session_simulator.h"
 
 namespace duskmap {

@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "slam/synthetic/apartment.h"
 #include "slam/synthetic/lighting.h"
+#include "slam/synthetic/scene/apartment.h"
 
 namespace duskmap {
 namespace {

@@ -1,4 +1,4 @@
-#include "slam/synthetic/furniture_layout.h"
+#include "slam/synthetic/scene/furniture_layout.h"
 
 #include <filesystem>
 
@@ -6,9 +6,9 @@
 
 #include "mesh_test_files.h"
 #include "slam/core/check.h"
-#include "slam/synthetic/apartment.h"
 #include "slam/synthetic/assets/furniture_catalog.h"
 #include "slam/synthetic/generator_config.h"
+#include "slam/synthetic/scene/apartment.h"
 
 namespace duskmap {
 namespace {

@@ -4,11 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include "one_window_scene.h"
 #include "slam/core/check.h"
-#include "slam/synthetic/apartment.h"
 #include "slam/synthetic/generator_config.h"
 #include "slam/synthetic/renderer.h"
-#include "one_window_scene.h"
+#include "slam/synthetic/scene/apartment.h"
 #include "small_camera.h"
 
 namespace duskmap {

@@ -10,7 +10,7 @@
 #include "slam/core/check.h"
 #include "slam/synthetic/lighting.h"
 #include "slam/synthetic/renderer.h"
-#include "slam/synthetic/scene_mesh.h"
+#include "slam/synthetic/scene/scene_mesh.h"
 
 namespace duskmap {
 namespace {

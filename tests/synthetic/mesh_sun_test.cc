@@ -8,11 +8,11 @@
 
 #include <gtest/gtest.h>
 
+#include "one_window_scene.h"
 #include "slam/core/check.h"
 #include "slam/synthetic/lighting.h"
 #include "slam/synthetic/renderer.h"
-#include "slam/synthetic/scene_mesh.h"
-#include "one_window_scene.h"
+#include "slam/synthetic/scene/scene_mesh.h"
 #include "small_camera.h"
 
 namespace duskmap {

@@ -5,7 +5,7 @@
 #include <opencv2/core.hpp>
 
 #include "slam/synthetic/lighting.h"
-#include "slam/synthetic/scene.h"
+#include "slam/synthetic/scene/scene.h"
 
 namespace duskmap {
 

@@ -1,4 +1,4 @@
-#include "slam/synthetic/photo_materials.h"
+#include "slam/synthetic/scene/photo_materials.h"
 
 #include <cmath>
 
@@ -6,8 +6,8 @@
 
 #include "mesh_test_files.h"
 #include "slam/core/check.h"
-#include "slam/synthetic/apartment.h"
 #include "slam/synthetic/generator_config.h"
+#include "slam/synthetic/scene/apartment.h"
 
 namespace duskmap {
 namespace {

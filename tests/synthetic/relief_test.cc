@@ -1,9 +1,9 @@
-#include "slam/synthetic/relief.h"
+#include "slam/synthetic/scene/relief.h"
 
 #include <gtest/gtest.h>
 
-#include "slam/synthetic/scene_builder.h"
-#include "slam/synthetic/textures.h"
+#include "slam/synthetic/scene/scene_builder.h"
+#include "slam/synthetic/scene/textures.h"
 
 namespace duskmap {
 namespace {

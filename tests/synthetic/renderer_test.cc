@@ -4,9 +4,9 @@
 
 #include "small_camera.h"
 
-#include "slam/synthetic/apartment.h"
 #include "slam/synthetic/lighting.h"
 #include "slam/synthetic/route.h"
+#include "slam/synthetic/scene/apartment.h"
 
 namespace duskmap {
 namespace {

@@ -11,7 +11,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "slam/core/check.h"
-#include "slam/synthetic/textures.h"
+#include "slam/synthetic/scene/textures.h"
 #include "tests/testing/error_of.h"
 #include "tests/testing/temp_dir.h"
 

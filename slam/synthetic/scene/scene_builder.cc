@@ -1,4 +1,4 @@
-#include "slam/synthetic/scene_builder.h"
+#include "slam/synthetic/scene/scene_builder.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include "slam/core/check.h"
 #include "slam/core/random.h"
-#include "slam/synthetic/relief.h"
+#include "slam/synthetic/scene/relief.h"
 
 namespace duskmap {
 namespace {

@@ -11,9 +11,9 @@
 
 #include <Eigen/Core>
 
-#include "slam/synthetic/furniture_layout.h"
-#include "slam/synthetic/photo_materials.h"
-#include "slam/synthetic/scene.h"
+#include "slam/synthetic/scene/furniture_layout.h"
+#include "slam/synthetic/scene/photo_materials.h"
+#include "slam/synthetic/scene/scene.h"
 
 namespace duskmap {
 

@@ -1,11 +1,11 @@
-#include "slam/synthetic/apartment.h"
+#include "slam/synthetic/scene/apartment.h"
 
 #include <cmath>
 
 #include "slam/core/check.h"
 #include "slam/core/random.h"
-#include "slam/synthetic/scene_builder.h"
-#include "slam/synthetic/textures.h"
+#include "slam/synthetic/scene/scene_builder.h"
+#include "slam/synthetic/scene/textures.h"
 
 namespace duskmap {
 namespace {

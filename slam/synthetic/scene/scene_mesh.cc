@@ -1,4 +1,4 @@
-#include "slam/synthetic/scene_mesh.h"
+#include "slam/synthetic/scene/scene_mesh.h"
 
 #include <algorithm>
 #include <map>

@@ -1,4 +1,4 @@
-#include "slam/synthetic/scene.h"
+#include "slam/synthetic/scene/scene.h"
 
 #include <utility>
 

@@ -11,7 +11,7 @@
 
 #include "slam/core/rigid3.h"
 #include "slam/synthetic/raster/triangle_bvh.h"
-#include "slam/synthetic/scene_mesh.h"
+#include "slam/synthetic/scene/scene_mesh.h"
 
 namespace duskmap {
 

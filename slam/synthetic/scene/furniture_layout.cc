@@ -1,4 +1,4 @@
-#include "slam/synthetic/furniture_layout.h"
+#include "slam/synthetic/scene/furniture_layout.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "slam/synthetic/value_noise.h"
+#include "slam/synthetic/scene/value_noise.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "slam/synthetic/photo_materials.h"
+#include "slam/synthetic/scene/photo_materials.h"
 
 #include <algorithm>
 #include <cmath>

@@ -11,9 +11,9 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
-#include "slam/synthetic/photo_materials.h"
-#include "slam/synthetic/scene.h"
-#include "slam/synthetic/textures.h"
+#include "slam/synthetic/scene/photo_materials.h"
+#include "slam/synthetic/scene/scene.h"
+#include "slam/synthetic/scene/textures.h"
 
 namespace duskmap {
 

@@ -13,9 +13,9 @@
 
 #include <opencv2/core.hpp>
 
-#include "slam/synthetic/relief.h"
-#include "slam/synthetic/scene.h"
-#include "slam/synthetic/texture_request.h"
+#include "slam/synthetic/scene/relief.h"
+#include "slam/synthetic/scene/scene.h"
+#include "slam/synthetic/scene/texture_request.h"
 
 namespace duskmap {
 

@@ -1,4 +1,4 @@
-#include "slam/synthetic/textures.h"
+#include "slam/synthetic/scene/textures.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,9 +11,9 @@
 #include "slam/core/random.h"
 #include "slam/io/image_header.h"
 #include "slam/io/path_status.h"
-#include "slam/synthetic/photo_materials.h"
-#include "slam/synthetic/relief.h"
-#include "slam/synthetic/value_noise.h"
+#include "slam/synthetic/scene/photo_materials.h"
+#include "slam/synthetic/scene/relief.h"
+#include "slam/synthetic/scene/value_noise.h"
 
 namespace duskmap {
 namespace {

@@ -1,11 +1,11 @@
-#include "slam/synthetic/relief.h"
+#include "slam/synthetic/scene/relief.h"
 
 #include <algorithm>
 
 #include <opencv2/imgproc.hpp>
 
 #include "slam/core/check.h"
-#include "slam/synthetic/value_noise.h"
+#include "slam/synthetic/scene/value_noise.h"
 
 namespace duskmap {
 

@@ -8,7 +8,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "slam/synthetic/texture_request.h"
+#include "slam/synthetic/scene/texture_request.h"
 
 namespace duskmap {
 

@@ -1,4 +1,4 @@
-#include "slam/synthetic/texture_request.h"
+#include "slam/synthetic/scene/texture_request.h"
 
 #include <algorithm>
 #include <cmath>
