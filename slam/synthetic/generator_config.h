@@ -9,7 +9,7 @@
 
 #include "slam/synthetic/camera_model.h"
 #include "slam/synthetic/depth_sensor.h"
-#include "slam/synthetic/lighting.h"
+#include "slam/synthetic/light/lighting.h"
 #include "slam/synthetic/odometry.h"
 #include "slam/synthetic/route.h"
 #include "slam/synthetic/scene/apartment.h"

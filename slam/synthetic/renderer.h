@@ -14,7 +14,7 @@
 
 #include "slam/core/camera.h"
 #include "slam/core/rigid3.h"
-#include "slam/synthetic/lighting.h"
+#include "slam/synthetic/light/lighting.h"
 #include "slam/synthetic/scene/scene.h"
 
 namespace duskmap {

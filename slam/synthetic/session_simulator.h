@@ -13,7 +13,7 @@
 #include "slam/synthetic/camera_model.h"
 #include "slam/synthetic/depth_sensor.h"
 #include "slam/synthetic/generator_config.h"
-#include "slam/synthetic/lighting.h"
+#include "slam/synthetic/light/lighting.h"
 #include "slam/synthetic/renderer.h"
 
 namespace duskmap {

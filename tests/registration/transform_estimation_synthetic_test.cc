@@ -19,7 +19,7 @@
 #include "slam/features/feature_options.h"
 #include "slam/registration/transform_estimation.h"
 #include "slam/synthetic/generator_config.h"
-#include "slam/synthetic/lighting.h"
+#include "slam/synthetic/light/lighting.h"
 #include "slam/synthetic/route.h"
 #include "slam/synthetic/scene/apartment.h"
 #include "slam/synthetic/session_simulator.h"

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "slam/synthetic/lighting.h"
+#include "slam/synthetic/light/lighting.h"
 #include "slam/synthetic/scene/apartment.h"
 
 namespace duskmap {

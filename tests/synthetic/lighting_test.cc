@@ -1,4 +1,4 @@
-#include "slam/synthetic/lighting.h"
+#include "slam/synthetic/light/lighting.h"
 
 #include <cmath>
 

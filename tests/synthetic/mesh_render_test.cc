@@ -8,7 +8,7 @@
 #include "small_camera.h"
 
 #include "slam/core/check.h"
-#include "slam/synthetic/lighting.h"
+#include "slam/synthetic/light/lighting.h"
 #include "slam/synthetic/renderer.h"
 #include "slam/synthetic/scene/scene_mesh.h"
 

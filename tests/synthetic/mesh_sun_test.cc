@@ -1,7 +1,7 @@
 // The sun per pixel over mesh triangles whose vertices disagree about it
 // (mesh_sun.h): the barycentric grid's interpolation, its sampling, and a
 // sun patch's edge across a furniture mesh drawn straight.
-#include "slam/synthetic/mesh_sun.h"
+#include "slam/synthetic/light/mesh_sun.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 
 #include "one_window_scene.h"
 #include "slam/core/check.h"
-#include "slam/synthetic/lighting.h"
+#include "slam/synthetic/light/lighting.h"
 #include "slam/synthetic/renderer.h"
 #include "slam/synthetic/scene/scene_mesh.h"
 #include "small_camera.h"

@@ -4,7 +4,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "slam/synthetic/lighting.h"
+#include "slam/synthetic/light/lighting.h"
 #include "slam/synthetic/scene/scene.h"
 
 namespace duskmap {

@@ -4,7 +4,7 @@
 
 #include "small_camera.h"
 
-#include "slam/synthetic/lighting.h"
+#include "slam/synthetic/light/lighting.h"
 #include "slam/synthetic/route.h"
 #include "slam/synthetic/scene/apartment.h"
 

@@ -1,4 +1,4 @@
-#include "slam/synthetic/solar.h"
+#include "slam/synthetic/light/solar.h"
 
 #include <gtest/gtest.h>
 

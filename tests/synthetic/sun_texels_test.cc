@@ -1,4 +1,4 @@
-#include "slam/synthetic/sun_texels.h"
+#include "slam/synthetic/light/sun_texels.h"
 
 #include <cmath>
 

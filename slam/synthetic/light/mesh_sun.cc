@@ -1,4 +1,4 @@
-#include "slam/synthetic/mesh_sun.h"
+#include "slam/synthetic/light/mesh_sun.h"
 
 #include <algorithm>
 #include <cmath>

@@ -14,7 +14,7 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
-#include "slam/synthetic/sun_texels.h"
+#include "slam/synthetic/light/sun_texels.h"
 
 namespace duskmap {
 

@@ -1,4 +1,4 @@
-#include "slam/synthetic/lighting.h"
+#include "slam/synthetic/light/lighting.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,8 @@
 #include <utility>
 
 #include "slam/core/check.h"
-#include "slam/synthetic/quad_bvh.h"
-#include "slam/synthetic/sun_texels.h"
+#include "slam/synthetic/light/quad_bvh.h"
+#include "slam/synthetic/light/sun_texels.h"
 
 namespace duskmap {
 namespace {

@@ -11,9 +11,9 @@
 
 #include <opencv2/core.hpp>
 
-#include "slam/synthetic/mesh_sun.h"
+#include "slam/synthetic/light/mesh_sun.h"
+#include "slam/synthetic/light/solar.h"
 #include "slam/synthetic/scene/scene.h"
-#include "slam/synthetic/solar.h"
 
 namespace duskmap {
 

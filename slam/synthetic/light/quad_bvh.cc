@@ -1,4 +1,4 @@
-#include "slam/synthetic/quad_bvh.h"
+#include "slam/synthetic/light/quad_bvh.h"
 
 #include <algorithm>
 #include <cmath>
