@@ -9,7 +9,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "slam/synthetic/renderer.h"
+#include "slam/synthetic/render/renderer.h"
 #include "slam/synthetic/scene/scene.h"
 #include "slam/synthetic/sensor_noise.h"
 

@@ -14,7 +14,7 @@
 #include "slam/synthetic/depth_sensor.h"
 #include "slam/synthetic/generator_config.h"
 #include "slam/synthetic/light/lighting.h"
-#include "slam/synthetic/renderer.h"
+#include "slam/synthetic/render/renderer.h"
 
 namespace duskmap {
 

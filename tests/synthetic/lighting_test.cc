@@ -7,7 +7,7 @@
 #include "one_window_scene.h"
 #include "slam/core/check.h"
 #include "slam/synthetic/generator_config.h"
-#include "slam/synthetic/renderer.h"
+#include "slam/synthetic/render/renderer.h"
 #include "slam/synthetic/scene/apartment.h"
 #include "small_camera.h"
 

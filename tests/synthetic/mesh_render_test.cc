@@ -9,7 +9,7 @@
 
 #include "slam/core/check.h"
 #include "slam/synthetic/light/lighting.h"
-#include "slam/synthetic/renderer.h"
+#include "slam/synthetic/render/renderer.h"
 #include "slam/synthetic/scene/scene_mesh.h"
 
 namespace duskmap {

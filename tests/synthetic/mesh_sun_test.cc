@@ -11,7 +11,7 @@
 #include "one_window_scene.h"
 #include "slam/core/check.h"
 #include "slam/synthetic/light/lighting.h"
-#include "slam/synthetic/renderer.h"
+#include "slam/synthetic/render/renderer.h"
 #include "slam/synthetic/scene/scene_mesh.h"
 #include "small_camera.h"
 

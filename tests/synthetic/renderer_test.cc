@@ -1,4 +1,4 @@
-#include "slam/synthetic/renderer.h"
+#include "slam/synthetic/render/renderer.h"
 
 #include <gtest/gtest.h>
 
