@@ -12,8 +12,8 @@
 #include "slam/io/tum_writer.h"
 #include "slam/synthetic/assets/furniture_catalog.h"
 #include "slam/synthetic/generator_config.h"
-#include "slam/synthetic/route.h"
 #include "slam/synthetic/scene/apartment.h"
+#include "slam/synthetic/sensor/route.h"
 #include "slam/synthetic/session_simulator.h"
 
 namespace duskmap {

@@ -18,10 +18,10 @@
 #include "slam/io/folder_commit.h"
 #include "slam/io/synthetic_dataset.h"
 #include "slam/io/tum_writer.h"
-#include "slam/synthetic/odometry.h"
 #include "slam/synthetic/preview.h"
-#include "slam/synthetic/route.h"
 #include "slam/synthetic/scene/apartment.h"
+#include "slam/synthetic/sensor/odometry.h"
+#include "slam/synthetic/sensor/route.h"
 #include "slam/synthetic/session_simulator.h"
 
 namespace duskmap {

@@ -7,12 +7,12 @@
 #include <string>
 #include <vector>
 
-#include "slam/synthetic/camera_model.h"
-#include "slam/synthetic/depth_sensor.h"
 #include "slam/synthetic/light/lighting.h"
-#include "slam/synthetic/odometry.h"
-#include "slam/synthetic/route.h"
 #include "slam/synthetic/scene/apartment.h"
+#include "slam/synthetic/sensor/camera_model.h"
+#include "slam/synthetic/sensor/depth_sensor.h"
+#include "slam/synthetic/sensor/odometry.h"
+#include "slam/synthetic/sensor/route.h"
 
 namespace duskmap {
 

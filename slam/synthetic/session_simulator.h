@@ -10,11 +10,11 @@
 #include <vector>
 
 #include "slam/core/rgbd_frame.h"
-#include "slam/synthetic/camera_model.h"
-#include "slam/synthetic/depth_sensor.h"
 #include "slam/synthetic/generator_config.h"
 #include "slam/synthetic/light/lighting.h"
 #include "slam/synthetic/render/renderer.h"
+#include "slam/synthetic/sensor/camera_model.h"
+#include "slam/synthetic/sensor/depth_sensor.h"
 
 namespace duskmap {
 

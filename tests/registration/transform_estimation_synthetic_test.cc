@@ -20,8 +20,8 @@
 #include "slam/registration/transform_estimation.h"
 #include "slam/synthetic/generator_config.h"
 #include "slam/synthetic/light/lighting.h"
-#include "slam/synthetic/route.h"
 #include "slam/synthetic/scene/apartment.h"
+#include "slam/synthetic/sensor/route.h"
 #include "slam/synthetic/session_simulator.h"
 
 namespace duskmap {

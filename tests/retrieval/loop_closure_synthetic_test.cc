@@ -17,9 +17,9 @@
 #include "slam/features/feature_options.h"
 #include "slam/retrieval/loop_closure_detector.h"
 #include "slam/synthetic/generator_config.h"
-#include "slam/synthetic/route.h"
 #include "slam/synthetic/scene/apartment.h"
 #include "slam/synthetic/scene/scene.h"
+#include "slam/synthetic/sensor/route.h"
 #include "slam/synthetic/session_simulator.h"
 
 namespace duskmap {

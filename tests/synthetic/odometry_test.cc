@@ -1,4 +1,4 @@
-#include "slam/synthetic/odometry.h"
+#include "slam/synthetic/sensor/odometry.h"
 
 #include "slam/core/check.h"
 

@@ -5,8 +5,8 @@
 #include "small_camera.h"
 
 #include "slam/synthetic/light/lighting.h"
-#include "slam/synthetic/route.h"
 #include "slam/synthetic/scene/apartment.h"
+#include "slam/synthetic/sensor/route.h"
 
 namespace duskmap {
 namespace {

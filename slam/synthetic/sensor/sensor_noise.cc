@@ -1,4 +1,4 @@
-#include "slam/synthetic/sensor_noise.h"
+#include "slam/synthetic/sensor/sensor_noise.h"
 
 #include <cmath>
 #include <vector>

@@ -1,4 +1,4 @@
-#include "slam/synthetic/route.h"
+#include "slam/synthetic/sensor/route.h"
 
 #include <cmath>
 #include <random>

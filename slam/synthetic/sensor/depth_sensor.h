@@ -11,7 +11,7 @@
 
 #include "slam/synthetic/render/renderer.h"
 #include "slam/synthetic/scene/scene.h"
-#include "slam/synthetic/sensor_noise.h"
+#include "slam/synthetic/sensor/sensor_noise.h"
 
 namespace duskmap {
 

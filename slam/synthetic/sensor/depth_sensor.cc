@@ -1,4 +1,4 @@
-#include "slam/synthetic/depth_sensor.h"
+#include "slam/synthetic/sensor/depth_sensor.h"
 
 #include <algorithm>
 #include <cmath>

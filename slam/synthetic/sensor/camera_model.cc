@@ -1,4 +1,4 @@
-#include "slam/synthetic/camera_model.h"
+#include "slam/synthetic/sensor/camera_model.h"
 
 #include <algorithm>
 #include <cmath>

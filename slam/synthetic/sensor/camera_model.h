@@ -15,7 +15,7 @@
 #include <opencv2/core.hpp>
 
 #include "slam/core/camera.h"
-#include "slam/synthetic/sensor_noise.h"
+#include "slam/synthetic/sensor/sensor_noise.h"
 
 namespace duskmap {
 
