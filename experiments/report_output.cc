@@ -7,6 +7,7 @@
 
 #include "slam/core/check.h"
 #include "slam/core/json_fields.h"
+#include "slam/experiment/shard_set.h"
 #include "slam/experiment/paper_reference.h"
 #include "slam/experiment/report_builder.h"
 #include "slam/io/folder_commit.h"
@@ -92,16 +93,12 @@ void CheckReportFolder(const ReportRequest& request) {
 int WriteExperimentReport(const ReportRequest& request) {
   SLAM_THROW_IF_NOT(ConfigError, !request.results_dirs.empty()) << "report: no results folder";
   const ExperimentOptions options = ReadExperimentOptions(request.config_path);
-  // Every shard records the same features and clock; the first one plans.
-  const RunManifest manifest = ReadRunManifest(request.results_dirs.front());
-  for (size_t i = 1; i < request.results_dirs.size(); ++i) {
-    const RunManifest other = ReadRunManifest(request.results_dirs[i]);
-    SLAM_THROW_IF_NOT(InputError, other.features == manifest.features &&
-                                      other.session_clock == manifest.session_clock)
-        << (request.results_dirs[i] / "run.json").string()
-        << ": another run (features or sessions differ from "
-        << (request.results_dirs.front() / "run.json").string() << ")";
-  }
+  // The folders are the shards of one run, each once (and all of them unless
+  // a partial report is asked for); the first one plans.
+  const std::vector<ShardFolder> shards = ReadShardFolders(request.results_dirs);
+  CheckShardsOfOneRun(shards);
+  if (!request.allow_missing) CheckShardsComplete(shards);
+  const RunManifest& manifest = shards.front().manifest;
   // The config must be the one the run used (its record in run.json, when
   // the run wrote one): another config would label the results wrongly.
   if (!manifest.configuration.is_null()) {

@@ -18,6 +18,7 @@ struct ReportRequest {
   std::filesystem::path output_dir;
   std::string paper_results;  // paper numbers JSON; empty = configs/paper_results.json when present
   bool figures = true;        // run scripts/plot_report.py
+  bool allow_missing = false;  // a partial report: shards may be missing (their jobs are counted)
 };
 
 // Writes the report; prints where it went and the jobs still missing.

@@ -37,6 +37,7 @@ RunFn SetupReport(CLI::App& command) {
     request.output_dir = args->output;
     request.paper_results = args->paper;
     request.figures = args->figures;
+    request.allow_missing = args->allow_missing;
     const int missing = WriteExperimentReport(request);
     if (missing > 0 && !args->allow_missing) {
       std::cerr << "duskmap: error: " << missing
