@@ -8,10 +8,10 @@
 #include "slam/core/check.h"
 #include "slam/core/json_fields.h"
 #include "slam/experiment/shard_set.h"
-#include "slam/experiment/paper_reference.h"
-#include "slam/experiment/report_builder.h"
 #include "slam/io/folder_commit.h"
 #include "slam/io/output_safety.h"
+#include "slam/report/paper_reference.h"
+#include "slam/report/report_builder.h"
 
 namespace duskmap::cli {
 namespace fs = std::filesystem;

@@ -7,7 +7,7 @@
 
 #include "experiments/command_registry.h"
 #include "slam/core/check.h"
-#include "slam/experiment/regression_check.h"
+#include "slam/report/regression_check.h"
 
 namespace duskmap::cli {
 namespace {

@@ -12,7 +12,7 @@
 #include <string>
 
 #include "slam/core/check.h"
-#include "slam/experiment/regression_check.h"
+#include "slam/report/regression_check.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "slam/experiment/report_table.h"
+#include "slam/report/report_table.h"
 
 #include <algorithm>
 #include <iomanip>

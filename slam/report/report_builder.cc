@@ -1,4 +1,4 @@
-#include "slam/experiment/report_builder.h"
+#include "slam/report/report_builder.h"
 
 #include <algorithm>
 #include <array>
@@ -7,8 +7,8 @@
 #include <sstream>
 
 #include "slam/core/check.h"
-#include "slam/experiment/report_table_ids.h"
 #include "slam/io/output_safety.h"
+#include "slam/report/report_table_ids.h"
 
 namespace duskmap {
 namespace fs = std::filesystem;

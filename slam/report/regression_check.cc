@@ -1,4 +1,4 @@
-#include "slam/experiment/regression_check.h"
+#include "slam/report/regression_check.h"
 
 #include <cmath>
 #include <fstream>

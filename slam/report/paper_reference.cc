@@ -1,11 +1,11 @@
-#include "slam/experiment/paper_reference.h"
+#include "slam/report/paper_reference.h"
 
 #include <algorithm>
 #include <map>
 #include <set>
 
 #include "slam/core/json_fields.h"
-#include "slam/experiment/report_table.h"
+#include "slam/report/report_table.h"
 
 namespace duskmap {
 namespace {

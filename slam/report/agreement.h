@@ -13,10 +13,10 @@
 #include <utility>
 #include <vector>
 
-#include "slam/experiment/paper_findings.h"
-#include "slam/experiment/paper_reference.h"
-#include "slam/experiment/report_table.h"
-#include "slam/experiment/session_matrix.h"
+#include "slam/report/paper_findings.h"
+#include "slam/report/paper_reference.h"
+#include "slam/report/report_table.h"
+#include "slam/report/session_matrix.h"
 
 namespace duskmap {
 

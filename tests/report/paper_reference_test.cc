@@ -1,7 +1,7 @@
 // The paper's values file (`duskmap report --paper`): a key the report does
 // not know is refused, naming the file and the key, instead of leaving its
 // values out of the tables without a word (issue 48).
-#include "slam/experiment/paper_reference.h"
+#include "slam/report/paper_reference.h"
 
 #include <sys/stat.h>
 #include <unistd.h>

@@ -1,4 +1,4 @@
-#include "slam/experiment/paper_findings.h"
+#include "slam/report/paper_findings.h"
 
 #include <algorithm>
 #include <functional>
@@ -6,8 +6,8 @@
 #include <sstream>
 #include <utility>
 
-#include "slam/experiment/report_cells.h"
-#include "slam/experiment/report_table_ids.h"
+#include "slam/report/report_cells.h"
+#include "slam/report/report_table_ids.h"
 
 namespace duskmap {
 namespace {

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "slam/experiment/report_table.h"
-#include "slam/experiment/session_matrix.h"
+#include "slam/report/report_table.h"
+#include "slam/report/session_matrix.h"
 
 namespace duskmap {
 

@@ -1,4 +1,4 @@
-#include "slam/experiment/report_builder.h"
+#include "slam/report/report_builder.h"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include "slam/core/check.h"
 #include "slam/experiment/job_results_json.h"
 #include "slam/experiment/job_runner.h"
-#include "slam/experiment/report_table_ids.h"
+#include "slam/report/report_table_ids.h"
 #include "tests/testing/temp_dir.h"
 
 namespace duskmap {

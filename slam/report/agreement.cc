@@ -1,4 +1,4 @@
-#include "slam/experiment/agreement.h"
+#include "slam/report/agreement.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,8 @@
 #include <numeric>
 #include <sstream>
 
-#include "slam/experiment/report_cells.h"
-#include "slam/experiment/report_table_ids.h"
+#include "slam/report/report_cells.h"
+#include "slam/report/report_table_ids.h"
 
 namespace duskmap {
 namespace {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "slam/experiment/map_spec.h"
-#include "slam/experiment/report_table.h"
+#include "slam/report/report_table.h"
 
 namespace duskmap {
 

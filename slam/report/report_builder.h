@@ -8,13 +8,13 @@
 #include <string>
 #include <vector>
 
-#include "slam/experiment/agreement.h"
 #include "slam/experiment/experiment_config.h"
 #include "slam/experiment/job_plan.h"
 #include "slam/experiment/job_results.h"
-#include "slam/experiment/paper_reference.h"
-#include "slam/experiment/report_table.h"
-#include "slam/experiment/session_matrix.h"
+#include "slam/report/agreement.h"
+#include "slam/report/paper_reference.h"
+#include "slam/report/report_table.h"
+#include "slam/report/session_matrix.h"
 
 namespace duskmap {
 

@@ -1,4 +1,4 @@
-#include "slam/experiment/report_cells.h"
+#include "slam/report/report_cells.h"
 
 namespace duskmap {
 

@@ -1,8 +1,8 @@
-#include "slam/experiment/report_table.h"
+#include "slam/report/report_table.h"
 
 #include <gtest/gtest.h>
 
-#include "slam/experiment/paper_reference.h"
+#include "slam/report/paper_reference.h"
 
 namespace duskmap {
 namespace {

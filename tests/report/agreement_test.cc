@@ -1,8 +1,8 @@
-#include "slam/experiment/agreement.h"
+#include "slam/report/agreement.h"
 
 #include <gtest/gtest.h>
 
-#include "slam/experiment/report_table_ids.h"
+#include "slam/report/report_table_ids.h"
 
 namespace duskmap {
 namespace {
