@@ -128,11 +128,13 @@ const FeatureSetup& FeatureSetupByLabel(const std::string& label) {
   throw ConfigError("unknown feature '" + label + "' (known:" + known + ")");
 }
 
-void ExperimentOptions::Check() const {
-  SLAM_THROW_IF_NOT(ConfigError, !dataset_path.empty()) << "dataset.path: must be set";
-  SLAM_THROW_IF_NOT(ConfigError, !features.empty()) << "features: at least one feature needed";
-  std::set<std::string> seen;
-  for (const FeatureSetup& declared : declared_features) {
+namespace {
+
+// The columns: declared ones with codes of their own and valid options, each
+// listed column known or declared, and listed once.
+void CheckFeatureColumns(const ExperimentOptions& o) {
+  SLAM_THROW_IF_NOT(ConfigError, !o.features.empty()) << "features: at least one feature needed";
+  for (const FeatureSetup& declared : o.declared_features) {
     CheckPathLabel(declared.label, "features (declared code)");
     for (const FeatureSetup& known : KnownFeatureSetups()) {
       SLAM_THROW_IF_NOT(ConfigError, known.label != declared.label)
@@ -146,28 +148,34 @@ void ExperimentOptions::Check() const {
       SLAM_THROW(ConfigError) << "features: '" << declared.label << "': " << e.what();
     }
   }
-  for (const std::string& feature : features) {
-    FeatureSetupOf(feature);
+  std::set<std::string> seen;
+  for (const std::string& feature : o.features) {
+    o.FeatureSetupOf(feature);
     SLAM_THROW_IF_NOT(ConfigError, seen.insert(feature).second)
         << "features: '" << feature << "' listed twice";
   }
-  SLAM_THROW_IF_NOT(ConfigError, !maps.empty() || !consecutive_pairs.empty())
+}
+
+// Maps and the sessions localized on them: something to run, labels usable
+// as folder names, listed once, no map re-localized on its own frames.
+void CheckMapsAndSessions(const ExperimentOptions& o) {
+  SLAM_THROW_IF_NOT(ConfigError, !o.maps.empty() || !o.consecutive_pairs.empty())
       << "maps: no map and no consecutive pair: nothing to run";
-  SLAM_THROW_IF_NOT(ConfigError, maps.empty() || !localization_sessions.empty())
+  SLAM_THROW_IF_NOT(ConfigError, o.maps.empty() || !o.localization_sessions.empty())
       << "localization_sessions: maps are listed but no session localizes on them";
   // Map labels and session names become folder names of the results.
   std::set<std::string> map_labels;
-  for (const MapSpec& map : maps) {
+  for (const MapSpec& map : o.maps) {
     CheckPathLabel(map.label, "maps");
     SLAM_THROW_IF_NOT(ConfigError, map_labels.insert(map.label).second)
         << "maps: '" << map.label << "' listed twice";
   }
   std::set<std::string> localized;
-  for (const std::string& session : localization_sessions) {
+  for (const std::string& session : o.localization_sessions) {
     CheckPathLabel(session, "localization_sessions");
     SLAM_THROW_IF_NOT(ConfigError, localized.insert(session).second)
         << "localization_sessions: '" << session << "' listed twice";
-    for (const MapSpec& map : maps) {
+    for (const MapSpec& map : o.maps) {
       for (const std::string& mapped : map.sessions) {
         SLAM_THROW_IF_NOT(ConfigError, mapped != session)
             << "localization_sessions: '" << session << "' is also a session of map '"
@@ -175,8 +183,12 @@ void ExperimentOptions::Check() const {
       }
     }
   }
+}
+
+// The consecutive pairs (two sessions, listed once) and the gap classes.
+void CheckConsecutive(const ExperimentOptions& o) {
   std::set<std::pair<std::string, std::string>> pairs;
-  for (const ConsecutivePair& pair : consecutive_pairs) {
+  for (const ConsecutivePair& pair : o.consecutive_pairs) {
     CheckPathLabel(pair.map_session, "consecutive.pairs");
     CheckPathLabel(pair.localization_session, "consecutive.pairs");
     SLAM_THROW_IF_NOT(ConfigError, pair.map_session != pair.localization_session)
@@ -186,16 +198,23 @@ void ExperimentOptions::Check() const {
         << "consecutive.pairs: [\"" << pair.map_session << "\", \"" << pair.localization_session
         << "\"] listed twice";
   }
-  SLAM_THROW_IF_NOT(ConfigError, !consecutive_gap_classes_min.empty())
-      << "consecutive.gap_classes_min: must not be empty";
-  for (size_t i = 0; i < consecutive_gap_classes_min.size(); ++i) {
-    SLAM_THROW_IF_NOT(ConfigError, consecutive_gap_classes_min[i] > 0 &&
-                                       consecutive_gap_classes_min[i] <= 24 * 60 &&
-                                       (i == 0 || consecutive_gap_classes_min[i] >
-                                                      consecutive_gap_classes_min[i - 1]))
+  const std::vector<int>& classes = o.consecutive_gap_classes_min;
+  SLAM_THROW_IF_NOT(ConfigError, !classes.empty()) << "consecutive.gap_classes_min: must not be empty";
+  for (size_t i = 0; i < classes.size(); ++i) {
+    SLAM_THROW_IF_NOT(ConfigError, classes[i] > 0 && classes[i] <= 24 * 60 &&
+                                       (i == 0 || classes[i] > classes[i - 1]))
         << "consecutive.gap_classes_min: minutes must be increasing, in (0, 1440], got "
-        << consecutive_gap_classes_min[i];
+        << classes[i];
   }
+}
+
+}  // namespace
+
+void ExperimentOptions::Check() const {
+  SLAM_THROW_IF_NOT(ConfigError, !dataset_path.empty()) << "dataset.path: must be set";
+  CheckFeatureColumns(*this);
+  CheckMapsAndSessions(*this);
+  CheckConsecutive(*this);
   SLAM_THROW_IF_NOT(ConfigError, frame_step >= 1)
       << "frame_step: must be >= 1, got " << frame_step;
   SLAM_THROW_IF_NOT(ConfigError, max_frames_per_session >= 0)

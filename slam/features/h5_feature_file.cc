@@ -196,6 +196,38 @@ void WriteDataset(hid_t group, const char* name, hid_t file_type, hid_t memory_t
       << where << "/" << name << ": cannot be written: " << LastSystemError();
 }
 
+// The descriptors of an image's `n` keypoints, one row each: its D x N
+// "descriptors" dataset read as `kind` (float32 or float16 as CV_32F, uint8
+// as CV_8U); empty without keypoints.
+cv::Mat ReadDescriptorRows(hid_t group, const std::string& where, DescriptorKind kind, size_t n) {
+  const DatasetReader descriptors(group, "descriptors", where);
+  SLAM_THROW_IF_NOT(InputError, descriptors.dims().size() == 2 && descriptors.dims()[1] == n &&
+                                    (descriptors.dims()[0] >= 1 || n == 0))
+      << descriptors.where() << ": must be D x N with N = " << n << " (the keypoints), got "
+      << descriptors.shape_text();
+  const int d = static_cast<int>(descriptors.dims()[0]);
+  cv::Mat by_column;  // D x N, as stored
+  if (kind == DescriptorKind::kFloat) {
+    // float64 is refused, not narrowed: the docs and hloc's layout name
+    // float32 and float16, and silently narrowing hid a file's wrong type.
+    SLAM_THROW_IF_NOT(InputError, descriptors.type_class() == H5T_FLOAT &&
+                                      (descriptors.type_bytes() == 4 || descriptors.type_bytes() == 2))
+        << descriptors.where() << ": descriptor_kind float needs float32 or float16, got "
+        << descriptors.type_text();
+    by_column.create(d, static_cast<int>(n), CV_32F);
+    descriptors.ReadAll(H5T_NATIVE_FLOAT, by_column.data);
+    descriptors.RequireFinite(by_column.ptr<float>(), by_column.total());
+  } else {
+    SLAM_THROW_IF_NOT(InputError, descriptors.IsUnsignedByte())
+        << descriptors.where() << ": descriptor_kind binary needs uint8, got "
+        << descriptors.type_text();
+    by_column.create(d, static_cast<int>(n), CV_8U);
+    descriptors.ReadAll(H5T_NATIVE_UINT8, by_column.data);
+  }
+  if (n == 0) return cv::Mat();
+  return by_column.t();
+}
+
 }  // namespace
 
 const char* KeypointOriginName(KeypointOrigin origin) {
@@ -274,32 +306,8 @@ H5ImageFeatures H5FeatureFile::Read(const std::string& image, DescriptorKind kin
   keypoints.ReadAll(H5T_NATIVE_FLOAT, xy.data());
   keypoints.RequireFinite(xy.data(), xy.size());
 
-  const DatasetReader descriptors(group.get(), "descriptors", where);
-  SLAM_THROW_IF_NOT(InputError, descriptors.dims().size() == 2 && descriptors.dims()[1] == n &&
-                                    (descriptors.dims()[0] >= 1 || n == 0))
-      << descriptors.where() << ": must be D x N with N = " << n << " (the keypoints), got "
-      << descriptors.shape_text();
-  const int d = static_cast<int>(descriptors.dims()[0]);
   H5ImageFeatures out;
-  cv::Mat by_column;  // D x N, as stored
-  if (kind == DescriptorKind::kFloat) {
-    // float64 is refused, not narrowed: the docs and hloc's layout name
-    // float32 and float16, and silently narrowing hid a file's wrong type.
-    SLAM_THROW_IF_NOT(InputError, descriptors.type_class() == H5T_FLOAT &&
-                                      (descriptors.type_bytes() == 4 || descriptors.type_bytes() == 2))
-        << descriptors.where() << ": descriptor_kind float needs float32 or float16, got "
-        << descriptors.type_text();
-    by_column.create(d, static_cast<int>(n), CV_32F);
-    descriptors.ReadAll(H5T_NATIVE_FLOAT, by_column.data);
-    descriptors.RequireFinite(by_column.ptr<float>(), by_column.total());
-  } else {
-    SLAM_THROW_IF_NOT(InputError, descriptors.IsUnsignedByte())
-        << descriptors.where() << ": descriptor_kind binary needs uint8, got "
-        << descriptors.type_text();
-    by_column.create(d, static_cast<int>(n), CV_8U);
-    descriptors.ReadAll(H5T_NATIVE_UINT8, by_column.data);
-  }
-  if (n > 0) out.descriptors = by_column.t();
+  out.descriptors = ReadDescriptorRows(group.get(), where, kind, n);
 
   std::vector<float> scores, sizes, angles;
   std::vector<int32_t> octaves;

@@ -44,6 +44,14 @@ std::string MissingLayerType(const std::string& message) {
   return end == std::string::npos ? "" : message.substr(begin, end - begin);
 }
 
+// The index of the output named `name`; -1 when there is none.
+int OutputIndex(const std::vector<std::string>& names, const std::string& name) {
+  for (size_t i = 0; i < names.size(); ++i) {
+    if (names[i] == name) return static_cast<int>(i);
+  }
+  return -1;
+}
+
 }  // namespace
 
 OnnxFeatureExtractor::OnnxFeatureExtractor(const OnnxFeatureOptions& options, int max_features,
@@ -250,16 +258,12 @@ void OnnxFeatureExtractor::DecodeSparse(const Outputs& outputs, int rows, int co
                                         std::vector<cv::KeyPoint>* keypoints,
                                         cv::Mat* descriptors) const {
   const OnnxFeatureOptions& o = options_;
-  auto find = [&](const std::string& name) -> int {
-    for (size_t i = 0; i < outputs.names.size(); ++i) {
-      if (outputs.names[i] == name) return static_cast<int>(i);
-    }
-    return -1;
-  };
   const std::string kp_name = o.keypoints_output.empty() ? "keypoints" : o.keypoints_output;
   const std::string desc_name = o.descriptors_output.empty() ? "descriptors" : o.descriptors_output;
   const std::string score_name = o.scores_output.empty() ? "scores" : o.scores_output;
-  const int kp_index = find(kp_name), desc_index = find(desc_name), score_index = find(score_name);
+  const int kp_index = OutputIndex(outputs.names, kp_name);
+  const int desc_index = OutputIndex(outputs.names, desc_name);
+  const int score_index = OutputIndex(outputs.names, score_name);
   if (kp_index < 0) ContractError(outputs, "no output named " + kp_name);
   if (desc_index < 0) ContractError(outputs, "no output named " + desc_name);
   if (score_index < 0 && !o.scores_output.empty()) {

@@ -19,6 +19,48 @@ uint64_t RowHash(const uint8_t* row, size_t bytes) {
       std::string_view(reinterpret_cast<const char*>(row), bytes));
 }
 
+// Every word's row in an open-addressing table keyed by the row's hash (one
+// cache miss per lookup; a node map holds a million rows). Words are inserted
+// in id order and probed in insertion order, so of two words with the same
+// bytes the first is found. Only read once built: threads share it.
+class WordRowTable {
+ public:
+  WordRowTable(const MapWords& words, size_t row_bytes) : words_(words), row_bytes_(row_bytes) {
+    size_t slots = 1;
+    while (slots < 2 * words.ids.size()) slots <<= 1;
+    mask_ = slots - 1;
+    table_.resize(slots);
+    for (int r = 0; r < static_cast<int>(words.ids.size()); ++r) {
+      const uint64_t hash = RowHash(words.descriptors.ptr(r), row_bytes_);
+      size_t at = hash & mask_;
+      while (table_[at].row >= 0) at = (at + 1) & mask_;
+      table_[at] = {hash, r};
+    }
+  }
+
+  // The row index of the first word whose bytes are `row`'s; -1 when none.
+  int Find(const uint8_t* row) const {
+    const uint64_t hash = RowHash(row, row_bytes_);
+    for (size_t at = hash & mask_; table_[at].row >= 0; at = (at + 1) & mask_) {
+      if (table_[at].hash == hash &&
+          std::memcmp(words_.descriptors.ptr(table_[at].row), row, row_bytes_) == 0) {
+        return table_[at].row;
+      }
+    }
+    return -1;
+  }
+
+ private:
+  struct Slot {
+    uint64_t hash = 0;
+    int32_t row = -1;  // -1: empty
+  };
+  const MapWords& words_;
+  size_t row_bytes_;
+  size_t mask_ = 0;
+  std::vector<Slot> table_;
+};
+
 }  // namespace
 
 MapWordsRowSource::MapWordsRowSource(const MapWords& words, WordRowFormat format)
@@ -59,34 +101,7 @@ SharedRowsSummary ShareNodeRowsWithWords(const MapWords& words, Map* map) {
       << "ShareNodeRowsWithWords: word rows of " << word_row_bytes
       << " bytes, the map's format needs " << row_bytes;
   const MapWordsRowSource source(words, format);
-  // Every word's row in an open-addressing table keyed by the row's hash
-  // (one cache miss per lookup; a node map holds a million rows). Words are
-  // inserted in id order and probed in insertion order, so of two words
-  // with the same bytes the first is found.
-  size_t slots = 1;
-  while (slots < 2 * words.ids.size()) slots <<= 1;
-  const size_t mask = slots - 1;
-  struct Slot {
-    uint64_t hash = 0;
-    int32_t row = -1;  // -1: empty
-  };
-  std::vector<Slot> table(slots);
-  for (int r = 0; r < static_cast<int>(words.ids.size()); ++r) {
-    const uint64_t hash = RowHash(words.descriptors.ptr(r), row_bytes);
-    size_t at = hash & mask;
-    while (table[at].row >= 0) at = (at + 1) & mask;
-    table[at] = {hash, r};
-  }
-  auto find = [&](const uint8_t* row) -> int {
-    const uint64_t hash = RowHash(row, row_bytes);
-    for (size_t at = hash & mask; table[at].row >= 0; at = (at + 1) & mask) {
-      if (table[at].hash == hash &&
-          std::memcmp(words.descriptors.ptr(table[at].row), row, row_bytes) == 0) {
-        return table[at].row;
-      }
-    }
-    return -1;
-  };
+  const WordRowTable table(words, row_bytes);
   // Nodes are independent: two threads share them out (the lookup table and
   // the words are only read), each node's result the same either way.
   std::vector<std::pair<NodeId, CompactFeatures*>> nodes;
@@ -102,7 +117,7 @@ SharedRowsSummary ShareNodeRowsWithWords(const MapWords& words, Map* map) {
       bool any = false;
       for (size_t i = 0; i < features.size(); ++i) {
         if (!features.RowAsStoredWord(i, format, row.data())) break;  // no word can hold it
-        const int found = find(row.data());
+        const int found = table.Find(row.data());
         if (found >= 0) {
           row_words[i] = words.ids[found];
           any = true;

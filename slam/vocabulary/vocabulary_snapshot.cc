@@ -74,10 +74,11 @@ VocabularySnapshot Vocabulary::Export() const {
   return s;
 }
 
-void Vocabulary::Import(const VocabularySnapshot& s) {
-  SLAM_THROW_IF_NOT(InputError, num_nodes() == 0 && num_words() == 0 && next_word_id_ == 1)
-      << "Vocabulary::Import: the vocabulary is not empty (" << num_nodes() << " nodes, "
-      << num_words() << " words)";
+namespace {
+
+// The words' rows (as many as ids, of their format's type and width) and
+// ids (positive, increasing, below the next id); InputError otherwise.
+void CheckSnapshotWords(const VocabularySnapshot& s) {
   const WordRowFormat format = s.format();
   const int expected_type = format == WordRowFormat::kFloat32 ? CV_32F : CV_8U;
   SLAM_THROW_IF_NOT(InputError, s.descriptors.rows == static_cast<int>(s.word_ids.size()))
@@ -104,6 +105,11 @@ void Vocabulary::Import(const VocabularySnapshot& s) {
   SLAM_THROW_IF_NOT(InputError, s.next_word_id >= 1 && s.next_word_id <= kMaxWordId + 1)
       << "vocabulary snapshot: next word id " << s.next_word_id << " must be in [1, "
       << kMaxWordId + 1 << "]";
+}
+
+// The nodes (increasing, with word counts of snapshot words) and that every
+// word is some node's; InputError otherwise.
+void CheckSnapshotNodes(const VocabularySnapshot& s) {
   std::unordered_set<WordId> referenced;
   for (size_t i = 0; i < s.nodes.size(); ++i) {
     const VocabularyNodeWords& n = s.nodes[i];
@@ -125,6 +131,16 @@ void Vocabulary::Import(const VocabularySnapshot& s) {
   SLAM_THROW_IF_NOT(InputError, referenced.size() == s.word_ids.size())
       << "vocabulary snapshot: " << s.word_ids.size() - referenced.size()
       << " words are referenced by no node";
+}
+
+}  // namespace
+
+void Vocabulary::Import(const VocabularySnapshot& s) {
+  SLAM_THROW_IF_NOT(InputError, num_nodes() == 0 && num_words() == 0 && next_word_id_ == 1)
+      << "Vocabulary::Import: the vocabulary is not empty (" << num_nodes() << " nodes, "
+      << num_words() << " words)";
+  CheckSnapshotWords(s);
+  CheckSnapshotNodes(s);
 
   if (!s.word_ids.empty()) {
     // The words are kept as the snapshot stores them, whatever this
