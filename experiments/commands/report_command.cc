@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "experiments/command_registry.h"
-#include "experiments/report_output.h"
+#include "experiments/report_summary.h"
 
 namespace duskmap::cli {
 namespace {
@@ -31,14 +31,14 @@ RunFn SetupReport(CLI::App& command) {
   command.add_flag("--allow-missing", args->allow_missing,
                    "exit 0 even when some jobs have no results");
   return [args] {
-    ReportRequest request;
-    request.config_path = args->config;
-    for (const std::string& dir : args->results) request.results_dirs.emplace_back(dir);
-    request.output_dir = args->output;
+    ExperimentReportRequest request = ReportRequestFor(
+        args->config, std::vector<std::filesystem::path>(args->results.begin(), args->results.end()),
+        args->output, args->figures);
     request.paper_results = args->paper;
-    request.figures = args->figures;
     request.allow_missing = args->allow_missing;
-    const int missing = WriteExperimentReport(request);
+    const ExperimentReportOutcome outcome = WriteExperimentReport(request);
+    PrintReportOutcome(request, outcome);
+    const size_t missing = outcome.missing_jobs.size();
     if (missing > 0 && !args->allow_missing) {
       std::cerr << "duskmap: error: " << missing
                 << " jobs have no results in the given folders (a shard missing or unfinished; "

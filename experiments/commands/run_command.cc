@@ -18,7 +18,7 @@
 #include <opencv2/core.hpp>
 
 #include "experiments/command_registry.h"
-#include "experiments/report_output.h"
+#include "experiments/report_summary.h"
 #include "slam/core/check.h"
 #include "slam/core/checksum.h"
 #include "slam/core/json_fields.h"
@@ -299,12 +299,9 @@ RunFn SetupRun(CLI::App& command) {
     std::cout.flush();
     WriteRunTiming(summary, output / "timing.json");
     if (args->report && shard_count == 1) {
-      ReportRequest request;
-      request.config_path = args->config;
-      request.results_dirs = {output};
-      request.output_dir = output / "report";
-      request.figures = args->figures;
-      WriteExperimentReport(request);
+      const ExperimentReportRequest request =
+          ReportRequestFor(args->config, {output}, output / "report", args->figures);
+      PrintReportOutcome(request, WriteExperimentReport(request));
     }
     SLAM_THROW_IF_NOT(Error, summary.ok())
         << summary.failures.size() << " of " << plan.jobs.size() << " jobs failed (see above)";

@@ -1,19 +1,18 @@
-#include "experiments/report_output.h"
+#include "slam/report/experiment_report.h"
 
 #include <algorithm>
 #include <cstdlib>
-#include <iostream>
-#include <optional>
 
 #include "slam/core/check.h"
 #include "slam/core/json_fields.h"
+#include "slam/experiment/experiment_config.h"
 #include "slam/experiment/shard_set.h"
 #include "slam/io/folder_commit.h"
 #include "slam/io/output_safety.h"
 #include "slam/report/paper_reference.h"
 #include "slam/report/report_builder.h"
 
-namespace duskmap::cli {
+namespace duskmap {
 namespace fs = std::filesystem;
 namespace {
 
@@ -67,7 +66,7 @@ OwnedOutput OwnedReportFolder() {
 
 // The report folder is new, empty, or an earlier report, complete or not;
 // it is none of the inputs and does not hold the results.
-void CheckReportFolder(const ReportRequest& request) {
+void CheckReportFolder(const ExperimentReportRequest& request) {
   std::vector<NamedPath> inputs = {{"config", request.config_path}};
   for (const fs::path& dir : request.results_dirs) {
     inputs.push_back({"--results", (dir / "jobs").string()});
@@ -88,19 +87,10 @@ void CheckReportFolder(const ReportRequest& request) {
       << foreign << ", which a report does not write); choose a new or empty --output";
 }
 
-}  // namespace
-
-int WriteExperimentReport(const ReportRequest& request) {
-  SLAM_THROW_IF_NOT(ConfigError, !request.results_dirs.empty()) << "report: no results folder";
-  const ExperimentOptions options = ReadExperimentOptions(request.config_path);
-  // The folders are the shards of one run, each once (and all of them unless
-  // a partial report is asked for); the first one plans.
-  const std::vector<ShardFolder> shards = ReadShardFolders(request.results_dirs);
-  CheckShardsOfOneRun(shards);
-  if (!request.allow_missing) CheckShardsComplete(shards);
-  const RunManifest& manifest = shards.front().manifest;
-  // The config must be the one the run used (its record in run.json, when
-  // the run wrote one): another config would label the results wrongly.
+// The config must be the one the run used (its record in run.json, when
+// the run wrote one): another config would label the results wrongly.
+void CheckConfigIsTheRuns(const ExperimentReportRequest& request, const ExperimentOptions& options,
+                          const RunManifest& manifest) {
   if (!manifest.configuration.is_null()) {
     const std::string difference = FirstJsonDifference(manifest.configuration.value("experiment", nlohmann::json()),
                                                        ReadJsonFile(request.config_path));
@@ -115,21 +105,51 @@ int WriteExperimentReport(const ReportRequest& request) {
         << request.config_path << ": does not list feature " << feature << " of the run in "
         << (request.results_dirs.front() / "run.json").string();
   }
+}
+
+std::optional<PaperReference> LoadPaper(const ExperimentReportRequest& request) {
+  std::string paper_file = request.paper_results;
+  if (paper_file.empty() && !request.default_paper_results.empty() &&
+      fs::exists(request.default_paper_results)) {
+    paper_file = request.default_paper_results.string();
+  }
+  if (paper_file.empty()) return std::nullopt;
+  return PaperReference::Load(paper_file);
+}
+
+// scripts/plot_report.py over the staged report (its stdout discarded, its
+// errors on stderr); true when it succeeded.
+bool DrawFigures(const ExperimentReportRequest& request, const fs::path& staging) {
+  std::string command = "/usr/bin/python3 " + ShellQuote(request.plot_script.string()) + " " +
+                        ShellQuote(staging.string());
+  for (const fs::path& dir : request.results_dirs) {
+    command += " --jobs-dir " + ShellQuote((dir / "jobs").string());
+  }
+  command += " --title " + ShellQuote(fs::path(request.config_path).filename().string());
+  command += " > /dev/null";
+  return std::system(command.c_str()) == 0;
+}
+
+}  // namespace
+
+ExperimentReportOutcome WriteExperimentReport(const ExperimentReportRequest& request) {
+  SLAM_THROW_IF_NOT(ConfigError, !request.results_dirs.empty()) << "report: no results folder";
+  const ExperimentOptions options = ReadExperimentOptions(request.config_path);
+  // The folders are the shards of one run, each once (and all of them unless
+  // a partial report is asked for); the first one plans.
+  const std::vector<ShardFolder> shards = ReadShardFolders(request.results_dirs);
+  CheckShardsOfOneRun(shards);
+  if (!request.allow_missing) CheckShardsComplete(shards);
+  const RunManifest& manifest = shards.front().manifest;
+  CheckConfigIsTheRuns(request, options, manifest);
   CheckReportFolder(request);
   const ExperimentPlan plan = PlanFromManifest(options, manifest);
   ExperimentOptions reported = options;
   reported.features = manifest.features;
   const ExperimentResults results = CollectResults(plan, request.results_dirs);
+  const std::optional<PaperReference> paper = LoadPaper(request);
 
-  std::optional<PaperReference> paper;
-  std::string paper_file = request.paper_results;
-  if (paper_file.empty()) {
-    const fs::path fallback = fs::path(DUSKMAP_SOURCE_DIR) / "configs" / "paper_results.json";
-    if (fs::exists(fallback)) paper_file = fallback.string();
-  }
-  if (!paper_file.empty()) paper = PaperReference::Load(paper_file);
-
-  const ExperimentReport report = BuildReport(reported, plan, results, paper);
+  ExperimentReport report = BuildReport(reported, plan, results, paper);
   // Written whole into a staging folder beside it and published at the end:
   // a full disk or a killed run leaves the earlier report as it was (and at
   // most a staging folder, which the next report removes).
@@ -142,56 +162,13 @@ int WriteExperimentReport(const ReportRequest& request) {
     throw InputError(request.output_dir.string() + ": the report was not written, the earlier one "
                      "is as it was (" + e.what() + ")");
   }
-  bool figures_drawn = false;
-  if (request.figures) {
-    const fs::path script = fs::path(DUSKMAP_SOURCE_DIR) / "scripts" / "plot_report.py";
-    std::string command = "/usr/bin/python3 " + ShellQuote(script.string()) + " " +
-                          ShellQuote(staging.string());
-    for (const fs::path& dir : request.results_dirs) {
-      command += " --jobs-dir " + ShellQuote((dir / "jobs").string());
-    }
-    command += " --title " + ShellQuote(fs::path(request.config_path).filename().string());
-    command += " > /dev/null";
-    figures_drawn = std::system(command.c_str()) == 0;
-  }
+  ExperimentReportOutcome outcome;
+  if (request.figures) outcome.figures_drawn = DrawFigures(request, staging);
   staged.Commit();
-  for (const SkippedFeature& skipped : manifest.skipped_features) {
-    std::cout << "note: feature " << skipped.label << " skipped: " << skipped.reason << "\n";
-  }
-  if (!results.missing_jobs.empty()) {
-    std::cout << "note: " << results.missing_jobs.size()
-              << " jobs have no results yet (their cells are empty), e.g. "
-              << results.missing_jobs.front() << "\n";
-  }
-  std::cout << "tables: " << (request.output_dir / "tables.md").string() << "\n";
-  if (report.agreement) {
-    const AgreementReport& agreement = *report.agreement;
-    const TableDeviation* single = agreement.FindDeviation(kDeviationSingleMaps);
-    const TableDeviation* multi = agreement.FindDeviation(kDeviationMultiMaps);
-    const auto number = [](const std::optional<double>& value, int decimals) {
-      return value ? FormatFixed(*value, decimals) : std::string("-");
-    };
-    std::cout << "agreement with the paper: single-session maps deviate by "
-              << number(single->mean_abs_deviation, 1) << " points, multi-session maps by "
-              << number(multi->mean_abs_deviation, 1) << " (held out), Spearman rho "
-              << number(agreement.ranking.spearman_rho, 2);
-    const RankAgreement& ranking = agreement.ranking;
-    if (!ranking.close_pairs.empty() && ranking.spearman_rho_low && ranking.spearman_rho_high) {
-      std::cout << " (" << FormatFixed(*ranking.spearman_rho_low, 2) << " to "
-                << FormatFixed(*ranking.spearman_rho_high, 2) << " over the orders of features within "
-                << FormatFixed(kRankResolutionPts, 1) << " points)";
-    }
-    std::cout << ", findings reproduced "
-              << agreement.FindingsReproduced() << "/" << agreement.FindingsDecided() << " ("
-              << (request.output_dir / "agreement.md").string() << ")\n";
-  }
-  if (request.figures && !figures_drawn) {
-    std::cout << "note: figures not drawn (scripts/plot_report.py failed; see its error "
-                 "above)\n";
-  } else if (request.figures) {
-    std::cout << "report: " << (request.output_dir / "report.md").string() << "\n";
-  }
-  return static_cast<int>(results.missing_jobs.size());
+  outcome.skipped_features = manifest.skipped_features;
+  outcome.missing_jobs = results.missing_jobs;
+  outcome.agreement = std::move(report.agreement);
+  return outcome;
 }
 
-}  // namespace duskmap::cli
+}  // namespace duskmap
