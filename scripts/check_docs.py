@@ -8,8 +8,10 @@
    projects' sources that way.
 2. A test count the README quotes ("N tests") is the number ctest lists,
    when a build folder is given.
-3. docs/architecture.md names every module folder of slam/ and says where the
-   spec that comments cite as "spec §" lives.
+3. docs/architecture.md's module table has a row (`| `m/` | ...`) for every
+   module folder of slam/ and for every sub-module folder holding sources
+   (`| `synthetic/scene/` | ...`), and the page says where the spec that
+   comments cite as "spec §" lives.
 4. The committed reference report is the main job's: results/paper_matrix/report.md
    is titled after configs/paper_matrix.json, and no committed result under
    results/ holds an absolute path of a machine (a JSON string, or a CSV or
@@ -38,6 +40,25 @@ def repository_files():
             rel = os.path.relpath(os.path.join(folder, f), ROOT)
             paths.add(rel)
     return paths
+
+
+MODULE_ROW = re.compile(r"^\| `([A-Za-z0-9_/]+/)` \|", re.M)
+
+
+def module_folders():
+    """slam/'s module folders and their sub-module folders that hold sources, as `m/`, `m/sub/`."""
+    slam = os.path.join(ROOT, "slam")
+    folders = []
+    for module in sorted(os.listdir(slam)):
+        path = os.path.join(slam, module)
+        if not os.path.isdir(path):
+            continue
+        folders.append(module + "/")
+        for folder, dirs, files in os.walk(path):
+            dirs.sort()
+            if folder != path and any(f.endswith((".h", ".cc")) for f in files):
+                folders.append(os.path.relpath(folder, slam).replace(os.sep, "/") + "/")
+    return folders
 
 
 ABSOLUTE_PATH = re.compile(r"(?:^|[\s(,|\"'`])(/(?:work|home|tmp|root|mnt|var|srv|opt|data)/[^\s,|\"'`)]*)")
@@ -96,9 +117,10 @@ def main():
                             problems.append(f"README.md:{number}: quotes {quoted} tests; ctest lists {total.group(1)}")
     with open(os.path.join(ROOT, "docs", "architecture.md"), encoding="utf-8") as text:
         architecture = text.read()
-    for module in sorted(os.listdir(os.path.join(ROOT, "slam"))):
-        if os.path.isdir(os.path.join(ROOT, "slam", module)) and f"`{module}/`" not in architecture:
-            problems.append(f"docs/architecture.md: the module slam/{module}/ is not described")
+    rows = set(MODULE_ROW.findall(architecture))
+    for folder in module_folders():
+        if folder not in rows:
+            problems.append(f"docs/architecture.md: the module table has no row for slam/{folder}")
     if "rtabmap_algorithms.md" not in architecture:
         problems.append("docs/architecture.md: does not say where the spec cited as \"spec §\" lives")
     problems += results_problems()

@@ -9,9 +9,9 @@
 
 #include "experiments/command_registry.h"
 #include "slam/core/check.h"
+#include "slam/eval/realism.h"
 #include "slam/io/synthetic_dataset.h"
 #include "slam/io/tum_dataset.h"
-#include "slam/synthetic/realism.h"
 
 namespace duskmap::cli {
 namespace {

@@ -1,4 +1,4 @@
-#include "slam/synthetic/realism.h"
+#include "slam/eval/realism.h"
 
 #include <unistd.h>
 
