@@ -161,18 +161,82 @@ bool RestrictSpan(double slope, double offset, double x_scale, double* lo, doubl
 // the edges' crossings.
 constexpr int kMinSpanForCrossings = 8;
 
-}  // namespace
+// A drawable triangle's edge functions as RasterizeTriangle walks them:
+// e_i = sign[i] * (a[i] x + (b[i] y + c[i])), normalised by the facing so
+// that a pixel is inside where all are >= 0 (then their sum S > 0 and
+// 1/z = S / |volume| > 0).
+struct EdgeWalk {
+  double a[3], b[3], c[3];
+  double sign[3], slope[3];
+  bool tie_inside[3];
+  double inv_slope = 0.0;  // d(1/z)/dx
+  double inv_volume = 0.0;
+  double inv_near = 0.0;
+};
 
-int RasterizeTriangle(const PinholeCamera& camera, const TriangleRasterOptions& options,
-                      const std::array<Eigen::Vector3d, 3>& vertices_in_camera, int id,
-                      TriangleRasterTarget* target) {
-  options.Check();
+// Narrows [lo, hi] to the columns of a row where every edge function (and
+// inv_near - 1/z) can be >= 0; false when an edge rules the row out.
+bool RowSpan(const EdgeWalk& w, const double row_term[3], double x_scale, double* lo, double* hi) {
+  bool possible = true;
+  double inv_offset = 0.0;
+  for (int i = 0; i < 3 && possible; ++i) {
+    possible = RestrictSpan(w.slope[i], w.sign[i] * row_term[i], x_scale, lo, hi);
+    inv_offset += w.sign[i] * row_term[i] * w.inv_volume;
+  }
+  // 1/z <= 1/near_m, i.e. inv_near - 1/z >= 0.
+  if (possible && w.inv_slope != 0.0) RestrictSpan(-w.inv_slope, w.inv_near - inv_offset, x_scale, lo, hi);
+  return possible;
+}
+
+// Draws columns [col_begin, col_end] of one row: the pixels inside the
+// triangle (top-left rule on ties), nearer than the near plane's 1/z and
+// than what the target holds. Returns the pixels written.
+int RasterizeRow(const EdgeWalk& w, int row, const double row_term[3], int col_begin, int col_end, int id,
+                 TriangleRasterTarget* target) {
+  float* depth_row = target->inv_depth.ptr<float>(row);
+  int* id_row = target->ids.ptr<int>(row);
+  cv::Vec2f* bary_row = target->barycentrics.ptr<cv::Vec2f>(row);
+  int written = 0;
+  for (int col = col_begin; col <= col_end; ++col) {
+    const double x = col;
+    // The same expression as ProjectedTriangle::Edge::At, times +-1.
+    const double e0 = w.sign[0] * (w.a[0] * x + row_term[0]);
+    const double e1 = w.sign[1] * (w.a[1] * x + row_term[1]);
+    const double e2 = w.sign[2] * (w.a[2] * x + row_term[2]);
+    if (!(e0 > 0.0 || (e0 == 0.0 && w.tie_inside[0]))) continue;
+    if (!(e1 > 0.0 || (e1 == 0.0 && w.tie_inside[1]))) continue;
+    if (!(e2 > 0.0 || (e2 == 0.0 && w.tie_inside[2]))) continue;
+    const double s = e0 + e1 + e2;
+    if (!(s > 0.0)) continue;
+    const double inv = s * w.inv_volume;
+    if (inv > w.inv_near) continue;
+    const float inv_f = static_cast<float>(inv);
+    if (!(inv_f > depth_row[col])) continue;
+    depth_row[col] = inv_f;
+    id_row[col] = id;
+    const double inv_s = 1.0 / s;
+    bary_row[col] = cv::Vec2f(static_cast<float>(e1 * inv_s), static_cast<float>(e2 * inv_s));
+    ++written;
+  }
+  return written;
+}
+
+void CheckRasterTarget(const PinholeCamera& camera, const TriangleRasterTarget* target) {
   SLAM_CHECK(camera.IsValid());
   SLAM_CHECK(target != nullptr && target->inv_depth.type() == CV_32FC1 && target->ids.type() == CV_32SC1 &&
              target->barycentrics.type() == CV_32FC2);
   SLAM_CHECK(target->inv_depth.cols == camera.width && target->inv_depth.rows == camera.height &&
              target->ids.size() == target->inv_depth.size() &&
              target->barycentrics.size() == target->inv_depth.size());
+}
+
+}  // namespace
+
+int RasterizeTriangle(const PinholeCamera& camera, const TriangleRasterOptions& options,
+                      const std::array<Eigen::Vector3d, 3>& vertices_in_camera, int id,
+                      TriangleRasterTarget* target) {
+  options.Check();
+  CheckRasterTarget(camera, target);
   // Culled, degenerate or non-finite: nothing to set up.
   const double volume = SignedVolume(vertices_in_camera);
   if (!(volume != 0.0 && std::isfinite(volume))) return 0;
@@ -186,63 +250,34 @@ int RasterizeTriangle(const PinholeCamera& camera, const TriangleRasterOptions& 
   // (then their sum S > 0 and 1/z = S / |volume| > 0).
   const double facing = triangle.front_facing() ? -1.0 : 1.0;
   const ProjectedTriangle::Edge* edges = triangle.edges_;
-  double sign[3], slope[3];
-  bool tie_inside[3];
-  double inv_slope = 0.0;  // d(1/z)/dx
-  const double inv_volume = 1.0 / std::abs(triangle.signed_volume());
+  EdgeWalk w;
+  w.inv_volume = 1.0 / std::abs(triangle.signed_volume());
   for (int i = 0; i < 3; ++i) {
-    sign[i] = facing * edges[i].sign;
-    slope[i] = sign[i] * edges[i].a;
-    const double slope_y = sign[i] * edges[i].b;
-    tie_inside[i] = slope[i] > 0.0 || (slope[i] == 0.0 && slope_y > 0.0);  // top-left rule
-    inv_slope += slope[i] * inv_volume;
+    w.a[i] = edges[i].a;
+    w.b[i] = edges[i].b;
+    w.c[i] = edges[i].c;
+    w.sign[i] = facing * edges[i].sign;
+    w.slope[i] = w.sign[i] * edges[i].a;
+    const double slope_y = w.sign[i] * edges[i].b;
+    w.tie_inside[i] = w.slope[i] > 0.0 || (w.slope[i] == 0.0 && slope_y > 0.0);  // top-left rule
+    w.inv_slope += w.slope[i] * w.inv_volume;
   }
-  const double inv_near = 1.0 / options.near_m;
+  w.inv_near = 1.0 / options.near_m;
   const bool solve_spans = bounds.col_end - bounds.col_begin >= kMinSpanForCrossings;
   const double x_scale = camera.width;
   int written = 0;
   for (int row = bounds.row_begin; row <= bounds.row_end; ++row) {
     const double y = row;
     double row_term[3];
-    for (int i = 0; i < 3; ++i) row_term[i] = edges[i].b * y + edges[i].c;
+    for (int i = 0; i < 3; ++i) row_term[i] = w.b[i] * y + w.c[i];
     double lo = bounds.col_begin, hi = bounds.col_end;
     if (solve_spans) {
-      bool possible = true;
-      double inv_offset = 0.0;
-      for (int i = 0; i < 3 && possible; ++i) {
-        possible = RestrictSpan(slope[i], sign[i] * row_term[i], x_scale, &lo, &hi);
-        inv_offset += sign[i] * row_term[i] * inv_volume;
-      }
-      // 1/z <= 1/near_m, i.e. inv_near - 1/z >= 0.
-      if (possible && inv_slope != 0.0) RestrictSpan(-inv_slope, inv_near - inv_offset, x_scale, &lo, &hi);
+      const bool possible = RowSpan(w, row_term, x_scale, &lo, &hi);
       if (!possible || lo > hi) continue;
     }
     const int col_begin = std::max(bounds.col_begin, static_cast<int>(std::floor(lo)));
     const int col_end = std::min(bounds.col_end, static_cast<int>(std::ceil(hi)));
-    float* depth_row = target->inv_depth.ptr<float>(row);
-    int* id_row = target->ids.ptr<int>(row);
-    cv::Vec2f* bary_row = target->barycentrics.ptr<cv::Vec2f>(row);
-    for (int col = col_begin; col <= col_end; ++col) {
-      const double x = col;
-      // The same expression as ProjectedTriangle::Edge::At, times +-1.
-      const double e0 = sign[0] * (edges[0].a * x + row_term[0]);
-      const double e1 = sign[1] * (edges[1].a * x + row_term[1]);
-      const double e2 = sign[2] * (edges[2].a * x + row_term[2]);
-      if (!(e0 > 0.0 || (e0 == 0.0 && tie_inside[0]))) continue;
-      if (!(e1 > 0.0 || (e1 == 0.0 && tie_inside[1]))) continue;
-      if (!(e2 > 0.0 || (e2 == 0.0 && tie_inside[2]))) continue;
-      const double s = e0 + e1 + e2;
-      if (!(s > 0.0)) continue;
-      const double inv = s * inv_volume;
-      if (inv > inv_near) continue;
-      const float inv_f = static_cast<float>(inv);
-      if (!(inv_f > depth_row[col])) continue;
-      depth_row[col] = inv_f;
-      id_row[col] = id;
-      const double inv_s = 1.0 / s;
-      bary_row[col] = cv::Vec2f(static_cast<float>(e1 * inv_s), static_cast<float>(e2 * inv_s));
-      ++written;
-    }
+    written += RasterizeRow(w, row, row_term, col_begin, col_end, id, target);
   }
   return written;
 }

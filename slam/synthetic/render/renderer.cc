@@ -204,41 +204,60 @@ void Renderer::AddReflection(int mirror, const std::vector<cv::Mat>& radiance,
   }
 }
 
-void Renderer::RenderMeshes(const SessionRadiance& radiance, const Rigid3d& camera_from_world,
-                            RenderedView* view) const {
-  const std::vector<std::vector<cv::Vec3f>>& vertex_light = radiance.mesh_vertex_light;
-  SLAM_CHECK(vertex_light.size() == scene_.meshes.size());
-  SLAM_CHECK(radiance.mesh_sun.empty() || radiance.mesh_sun.size() == scene_.meshes.size());
-  const cv::Size size(camera_.width, camera_.height);
+namespace {
+
+// The meshes' triangles drawn into a shared depth buffer: the winning
+// triangle's id (first_id[m] + its index in mesh m) and barycentrics per
+// pixel, and each drawn mesh's vertices in the camera frame.
+struct MeshRaster {
   TriangleRasterTarget target;
-  target.inv_depth = view->depth_m;  // shares the quads' inverse depths
+  std::vector<std::vector<Eigen::Vector3d>> in_camera;
+  std::vector<int> first_id;  // meshes.size() + 1 entries
+};
+
+// Whether a mesh's box lies wholly behind the near plane or beside the image.
+bool MeshBoxOutsideView(const PinholeCamera& camera, double near_m, const Eigen::Matrix3d& rotation,
+                        const Eigen::Vector3d& translation, const Eigen::AlignedBox3d& bounds_in_world) {
+  bool all_near = true, all_left = true, all_right = true, all_above = true, all_below = true;
+  for (int k = 0; k < 8; ++k) {
+    const Eigen::Vector3d c = rotation * bounds_in_world.corner(
+                                             static_cast<Eigen::AlignedBox3d::CornerType>(k)) +
+                              translation;
+    all_near = all_near && c.z() < near_m;
+    all_left = all_left && camera.fx * c.x() + camera.cx * c.z() < -0.5 * c.z();
+    all_right = all_right && camera.fx * c.x() + camera.cx * c.z() > (camera.width - 0.5) * c.z();
+    all_above = all_above && camera.fy * c.y() + camera.cy * c.z() < -0.5 * c.z();
+    all_below = all_below && camera.fy * c.y() + camera.cy * c.z() > (camera.height - 0.5) * c.z();
+  }
+  return all_near || all_left || all_right || all_above || all_below;
+}
+
+// Rasterizes every mesh in view into `inv_depth` (shared: the quads' inverse
+// depths are already there), both sides of each triangle.
+void RasterizeMeshes(const std::vector<SceneMesh>& meshes,
+                     const std::vector<std::vector<cv::Vec3f>>& vertex_light, const PinholeCamera& camera,
+                     double near_m, const Rigid3d& camera_from_world, const cv::Mat& inv_depth,
+                     MeshRaster* raster) {
+  const cv::Size size(camera.width, camera.height);
+  TriangleRasterTarget& target = raster->target;
+  target.inv_depth = inv_depth;
   target.ids.create(size, CV_32SC1);
   target.ids.setTo(cv::Scalar(-1));
   target.barycentrics.create(size, CV_32FC2);
   TriangleRasterOptions options;
-  options.near_m = near_m_;
+  options.near_m = near_m;
   options.cull_mode = CullMode::kNone;
   const Eigen::Matrix3d rotation = camera_from_world.rotation.toRotationMatrix();
   const Eigen::Vector3d& translation = camera_from_world.translation;
-  std::vector<std::vector<Eigen::Vector3d>> in_camera(scene_.meshes.size());
-  std::vector<int> first_id(scene_.meshes.size() + 1, 0);
-  for (size_t m = 0; m < scene_.meshes.size(); ++m) {
-    const SceneMesh& mesh = scene_.meshes[m];
+  std::vector<std::vector<Eigen::Vector3d>>& in_camera = raster->in_camera;
+  std::vector<int>& first_id = raster->first_id;
+  in_camera.assign(meshes.size(), {});
+  first_id.assign(meshes.size() + 1, 0);
+  for (size_t m = 0; m < meshes.size(); ++m) {
+    const SceneMesh& mesh = meshes[m];
     SLAM_CHECK(vertex_light[m].size() == mesh.positions_in_world.size());
     first_id[m + 1] = first_id[m] + static_cast<int>(mesh.triangles.size());
-    // Skip a mesh whose box lies wholly behind the near plane or beside the image.
-    bool all_near = true, all_left = true, all_right = true, all_above = true, all_below = true;
-    for (int k = 0; k < 8; ++k) {
-      const Eigen::Vector3d c = rotation * mesh.bounds_in_world.corner(
-                                               static_cast<Eigen::AlignedBox3d::CornerType>(k)) +
-                                translation;
-      all_near = all_near && c.z() < near_m_;
-      all_left = all_left && camera_.fx * c.x() + camera_.cx * c.z() < -0.5 * c.z();
-      all_right = all_right && camera_.fx * c.x() + camera_.cx * c.z() > (camera_.width - 0.5) * c.z();
-      all_above = all_above && camera_.fy * c.y() + camera_.cy * c.z() < -0.5 * c.z();
-      all_below = all_below && camera_.fy * c.y() + camera_.cy * c.z() > (camera_.height - 0.5) * c.z();
-    }
-    if (all_near || all_left || all_right || all_above || all_below) continue;
+    if (MeshBoxOutsideView(camera, near_m, rotation, translation, mesh.bounds_in_world)) continue;
     std::vector<Eigen::Vector3d>& points = in_camera[m];
     points.resize(mesh.positions_in_world.size());
     for (size_t v = 0; v < points.size(); ++v) {
@@ -246,77 +265,109 @@ void Renderer::RenderMeshes(const SessionRadiance& radiance, const Rigid3d& came
     }
     for (size_t t = 0; t < mesh.triangles.size(); ++t) {
       const std::array<int, 3>& tri = mesh.triangles[t];
-      RasterizeTriangle(camera_, options, {points[tri[0]], points[tri[1]], points[tri[2]]},
+      RasterizeTriangle(camera, options, {points[tri[0]], points[tri[1]], points[tri[2]]},
                         first_id[m] + static_cast<int>(t), &target);
     }
   }
+}
+
+// The light at a mesh pixel: the vertex light interpolated, and with `sun`
+// (a triangle it samples), the vertices' sun replaced by the sun at the pixel.
+cv::Vec3f MeshPixelLight(const std::vector<cv::Vec3f>& light, const MeshSun* sun,
+                         const std::array<int, 3>& tri, size_t triangle, float b0, float b1, float b2) {
+  cv::Vec3f lit = light[tri[0]] * b0 + light[tri[1]] * b1 + light[tri[2]] * b2;
+  if (sun != nullptr) {
+    const int sampled = sun->triangle_samples[triangle];
+    if (sampled >= 0) {
+      // The vertices' sun out, the sun at this pixel in.
+      const std::array<float, 3> b = {b0, b1, b2};
+      cv::Vec3f unshadowed(0, 0, 0);
+      for (int k = 0; k < 3; ++k) {
+        const cv::Vec3f& s = sun->vertex_sun[static_cast<size_t>(tri[k])];
+        unshadowed += s * b[k];
+        if (sun->vertex_sun_visible[static_cast<size_t>(tri[k])]) lit -= s * b[k];
+      }
+      lit += unshadowed * sun->samples[static_cast<size_t>(sampled)].At(b1, b2);
+    }
+  }
+  return lit;
+}
+
+// The albedo at a mesh pixel: the material's colour, times its mip-mapped
+// texture sampled over the pixel's footprint.
+cv::Vec3f MeshPixelAlbedo(const SceneMesh& mesh, const SceneMaterial& material, const std::array<int, 3>& tri,
+                          float b1, float b2, const ProjectedTriangle& projected, int col, int row) {
+  cv::Vec3f albedo = material.diffuse_bgr;
+  if (material.texture) {
+    const Eigen::Vector2f& t0 = mesh.texcoords[tri[0]];
+    const Eigen::Vector2f e1 = (mesh.texcoords[tri[1]] - t0).cwiseProduct(material.texture_scale);
+    const Eigen::Vector2f e2 = (mesh.texcoords[tri[2]] - t0).cwiseProduct(material.texture_scale);
+    const Eigen::Vector2f uv =
+        material.texture_offset + t0.cwiseProduct(material.texture_scale) + b1 * e1 + b2 * e2;
+    const BarycentricDerivatives d = projected.Derivatives(col, row);
+    const double footprint = FootprintTexels(
+        d.d_dx(0) * e1.x() + d.d_dx(1) * e2.x(), d.d_dx(0) * e1.y() + d.d_dx(1) * e2.y(),
+        d.d_dy(0) * e1.x() + d.d_dy(1) * e2.x(), d.d_dy(0) * e1.y() + d.d_dy(1) * e2.y(),
+        material.texture->width(), material.texture->height());
+    albedo = albedo.mul(material.texture->Sample(uv.x(), uv.y(), footprint));
+  }
+  return albedo;
+}
+
+// The cosine between the pixel's viewing ray and the triangle's normal.
+float MeshPixelCosIncidence(const PinholeCamera& camera, const std::vector<Eigen::Vector3d>& points,
+                            const std::array<int, 3>& tri, int col, int row) {
+  const Eigen::Vector3d normal =
+      (points[tri[1]] - points[tri[0]]).cross(points[tri[2]] - points[tri[0]]);
+  const Eigen::Vector3d ray((col - camera.cx) / camera.fx, (row - camera.cy) / camera.fy, 1.0);
+  const double denominator = normal.norm() * ray.norm();
+  return denominator > 0.0 ? static_cast<float>(std::abs(normal.dot(ray)) / denominator) : 0.0f;
+}
+
+}  // namespace
+
+void Renderer::RenderMeshes(const SessionRadiance& radiance, const Rigid3d& camera_from_world,
+                            RenderedView* view) const {
+  const std::vector<std::vector<cv::Vec3f>>& vertex_light = radiance.mesh_vertex_light;
+  SLAM_CHECK(vertex_light.size() == scene_.meshes.size());
+  SLAM_CHECK(radiance.mesh_sun.empty() || radiance.mesh_sun.size() == scene_.meshes.size());
+  MeshRaster raster;
+  RasterizeMeshes(scene_.meshes, vertex_light, camera_, near_m_, camera_from_world, view->depth_m, &raster);
+  const std::vector<int>& first_id = raster.first_id;
   // Shading: the pixels a triangle won.
   const int num_quads = static_cast<int>(scene_.quads.size());
   int cached_id = -1;
   std::optional<ProjectedTriangle> projected;
-  for (int row = 0; row < size.height; ++row) {
-    const int* tri_row = target.ids.ptr<int>(row);
-    const cv::Vec2f* bary_row = target.barycentrics.ptr<cv::Vec2f>(row);
+  for (int row = 0; row < camera_.height; ++row) {
+    const int* tri_row = raster.target.ids.ptr<int>(row);
+    const cv::Vec2f* bary_row = raster.target.barycentrics.ptr<cv::Vec2f>(row);
     int* id_row = view->surface_id.ptr<int>(row);
     float* depth_row = view->depth_m.ptr<float>(row);
     cv::Vec3f* out = view->radiance.ptr<cv::Vec3f>(row);
     float* cos_out = view->cos_incidence.ptr<float>(row);
-    for (int col = 0; col < size.width; ++col) {
+    for (int col = 0; col < camera_.width; ++col) {
       const int id = tri_row[col];
       if (id < 0) continue;
       const size_t m = static_cast<size_t>(
           std::upper_bound(first_id.begin(), first_id.end(), id) - first_id.begin() - 1);
       const SceneMesh& mesh = scene_.meshes[m];
-      const std::array<int, 3>& tri = mesh.triangles[static_cast<size_t>(id - first_id[m])];
-      const std::vector<Eigen::Vector3d>& points = in_camera[m];
+      const size_t triangle = static_cast<size_t>(id - first_id[m]);
+      const std::array<int, 3>& tri = mesh.triangles[triangle];
+      const std::vector<Eigen::Vector3d>& points = raster.in_camera[m];
       if (id != cached_id) {
         projected.emplace(camera_, std::array<Eigen::Vector3d, 3>{points[tri[0]], points[tri[1]],
                                                                    points[tri[2]]});
         cached_id = id;
       }
       const float b1 = bary_row[col][0], b2 = bary_row[col][1], b0 = 1.0f - b1 - b2;
-      const std::vector<cv::Vec3f>& light = vertex_light[m];
-      cv::Vec3f lit = light[tri[0]] * b0 + light[tri[1]] * b1 + light[tri[2]] * b2;
-      if (!radiance.mesh_sun.empty()) {
-        const MeshSun& sun = radiance.mesh_sun[m];
-        const int sampled = sun.triangle_samples[static_cast<size_t>(id - first_id[m])];
-        if (sampled >= 0) {
-          // The vertices' sun out, the sun at this pixel in.
-          const std::array<float, 3> b = {b0, b1, b2};
-          cv::Vec3f unshadowed(0, 0, 0);
-          for (int k = 0; k < 3; ++k) {
-            const cv::Vec3f& s = sun.vertex_sun[static_cast<size_t>(tri[k])];
-            unshadowed += s * b[k];
-            if (sun.vertex_sun_visible[static_cast<size_t>(tri[k])]) lit -= s * b[k];
-          }
-          lit += unshadowed * sun.samples[static_cast<size_t>(sampled)].At(b1, b2);
-        }
-      }
-      const SceneMaterial& material =
-          mesh.materials[static_cast<size_t>(mesh.triangle_material[static_cast<size_t>(id - first_id[m])])];
-      cv::Vec3f albedo = material.diffuse_bgr;
-      if (material.texture) {
-        const Eigen::Vector2f& t0 = mesh.texcoords[tri[0]];
-        const Eigen::Vector2f e1 = (mesh.texcoords[tri[1]] - t0).cwiseProduct(material.texture_scale);
-        const Eigen::Vector2f e2 = (mesh.texcoords[tri[2]] - t0).cwiseProduct(material.texture_scale);
-        const Eigen::Vector2f uv =
-            material.texture_offset + t0.cwiseProduct(material.texture_scale) + b1 * e1 + b2 * e2;
-        const BarycentricDerivatives d = projected->Derivatives(col, row);
-        const double footprint = FootprintTexels(
-            d.d_dx(0) * e1.x() + d.d_dx(1) * e2.x(), d.d_dx(0) * e1.y() + d.d_dx(1) * e2.y(),
-            d.d_dy(0) * e1.x() + d.d_dy(1) * e2.x(), d.d_dy(0) * e1.y() + d.d_dy(1) * e2.y(),
-            material.texture->width(), material.texture->height());
-        albedo = albedo.mul(material.texture->Sample(uv.x(), uv.y(), footprint));
-      }
-      out[col] = albedo.mul(lit);
+      const cv::Vec3f lit = MeshPixelLight(vertex_light[m], radiance.mesh_sun.empty() ? nullptr : &radiance.mesh_sun[m],
+                                           tri, triangle, b0, b1, b2);
+      const SceneMaterial& material = mesh.materials[static_cast<size_t>(mesh.triangle_material[triangle])];
+      out[col] = MeshPixelAlbedo(mesh, material, tri, b1, b2, *projected, col, row).mul(lit);
       const double z = 1.0 / depth_row[col];
       depth_row[col] = static_cast<float>(z);
       id_row[col] = num_quads + static_cast<int>(m);
-      const Eigen::Vector3d normal =
-          (points[tri[1]] - points[tri[0]]).cross(points[tri[2]] - points[tri[0]]);
-      const Eigen::Vector3d ray((col - camera_.cx) / camera_.fx, (row - camera_.cy) / camera_.fy, 1.0);
-      const double denominator = normal.norm() * ray.norm();
-      cos_out[col] = denominator > 0.0 ? static_cast<float>(std::abs(normal.dot(ray)) / denominator) : 0.0f;
+      cos_out[col] = MeshPixelCosIncidence(camera_, points, tri, col, row);
     }
   }
 }

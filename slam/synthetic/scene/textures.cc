@@ -365,6 +365,86 @@ double TexelSizeM(TextureKind kind) {
 
 namespace {
 
+// Wood floor planks (with joints across their length), furniture wood or a
+// worktop: planks of their own tone with grain; the joints are grooves.
+cv::Mat MakeWoodPlanks(const TextureRequest& request, const cv::Vec3f& base, cv::Size size, cv::RNG& rng,
+                       ReliefCanvas& relief) {
+  const bool floor = request.kind == TextureKind::kWoodFloor;
+  const int plank = floor ? 18 : 40;  // texels across a plank
+  cv::Mat grain = ValueNoise(cv::Size(size.width, std::max(2, size.height / 12)), 6.0, rng);
+  cv::resize(grain, grain, size, 0, 0, cv::INTER_LINEAR);
+  cv::Mat fine = ValueNoise(size, 2.0, rng);
+  cv::Mat out(size, CV_32FC3);
+  for (int r = 0; r < size.height; ++r) {
+    cv::Vec3f* o = out.ptr<cv::Vec3f>(r);
+    for (int c = 0; c < size.width; ++c) {
+      const int plank_index = c / plank;
+      const float tone = 0.75f + 0.5f * static_cast<float>((DeriveSeed(request.seed, plank_index) % 1000)) / 1000.0f;
+      const int joint_offset = static_cast<int>(DeriveSeed(request.seed + 7, plank_index) % 200);
+      const bool joint = (c % plank == 0) || (floor && (r + joint_offset) % 150 == 0);
+      const float g = 1.0f + 0.25f * grain.at<float>(r, c) + 0.08f * fine.at<float>(r, c);
+      o[c] = joint ? base * 0.35f : base * tone * g;
+      if (joint) relief.AddRect(cv::Rect(c, r, 1, 1), -0.003);  // the joints' bevelled grooves
+    }
+  }
+  return out;
+}
+
+// Square tiles with grout lines, the grout 3 mm back.
+cv::Mat MakeTiles(cv::Size size, const cv::Vec3f& base, cv::RNG& rng, ReliefCanvas& relief) {
+  cv::Mat out = Modulated(size, base, ValueNoise(size, 4.0, rng), 0.05f);
+  const int tile = 19;
+  for (int x = 0; x < size.width; x += tile) cv::line(out, {x, 0}, {x, size.height}, cv::Scalar::all(0.35), 1);
+  for (int y = 0; y < size.height; y += tile) cv::line(out, {0, y}, {size.width, y}, cv::Scalar::all(0.35), 1);
+  for (int x = 0; x < size.width; x += tile) relief.GrooveColumn(x, 0.003);  // grout, 3 mm back
+  for (int y = 0; y < size.height; y += tile) relief.GrooveRow(y, 0.003);
+  return out;
+}
+
+// Woven fabric; a rug adds a bordered pattern.
+cv::Mat MakeFabric(const TextureRequest& request, const cv::Vec3f& base, cv::Size size, cv::RNG& rng) {
+  cv::Mat out = Modulated(size, base, ValueNoise(size, 1.5, rng), 0.12f);
+  if (request.kind == TextureKind::kRug) {
+    const cv::Vec3f accent = RandomColor(rng, 0.05f, 0.6f);
+    for (int k = 1; k < 6; ++k) {
+      const int m = k * std::min(size.width, size.height) / 14;
+      cv::rectangle(out, cv::Rect(m, m, size.width - 2 * m, size.height - 2 * m), ToScalar(accent), 3);
+    }
+    DrawRandomShapes(out, 25, rng, 0.05f, 0.6f);
+  }
+  return out;
+}
+
+// A framed picture, poster or the docking picture: shapes, gradients and
+// text, or one of the user's images.
+cv::Mat MakePrint(const TextureRequest& request, const std::vector<cv::Mat>& user_images, cv::Size size,
+                  cv::RNG& rng) {
+  cv::Mat out = user_images.empty() || request.kind == TextureKind::kDocking
+                    ? GradientBackground(size, rng)
+                    : UserPicture(size, user_images, rng);
+  if (user_images.empty() || request.kind == TextureKind::kDocking) {
+    const int shapes = request.kind == TextureKind::kDocking ? 220 : 40;
+    DrawRandomShapes(out, shapes, rng, 0.02f, 0.85f);
+    DrawText(out, request.kind == TextureKind::kPicture ? 1 : 5, rng, 0.01f, 0.9f);
+  }
+  AddFrame(out, request.kind == TextureKind::kPoster ? cv::Vec3f(0.8f, 0.8f, 0.8f) : cv::Vec3f(0.05f, 0.06f, 0.08f));
+  return out;
+}
+
+// A painted door with two recessed panels and a knob.
+cv::Mat MakeDoor(cv::Size size, const cv::Vec3f& base, cv::RNG& rng, ReliefCanvas& relief) {
+  cv::Mat out = Modulated(size, base, ValueNoise(size, 8.0, rng), 0.03f);
+  const int m = size.width / 8;
+  cv::rectangle(out, cv::Rect(m, m, size.width - 2 * m, size.height / 2 - m), ToScalar(base * 0.7f), 2);
+  cv::rectangle(out, cv::Rect(m, size.height / 2 + m / 2, size.width - 2 * m, size.height / 2 - 2 * m), ToScalar(base * 0.7f), 2);
+  relief.AddRect(cv::Rect(m, m, size.width - 2 * m, size.height / 2 - m), -0.004);  // recessed panels
+  relief.AddRect(cv::Rect(m + 1, m + 1, size.width - 2 * m - 2, size.height / 2 - m - 2), -0.004);
+  relief.AddRect(cv::Rect(m, size.height / 2 + m / 2, size.width - 2 * m, size.height / 2 - 2 * m), -0.004);
+  relief.AddRect(cv::Rect(m + 1, size.height / 2 + m / 2 + 1, size.width - 2 * m - 2, size.height / 2 - 2 * m - 2), -0.004);
+  cv::circle(out, cv::Point(size.width - m / 2 - 2, size.height / 2), std::max(2, m / 3), cv::Scalar(0.5, 0.55, 0.6), cv::FILLED);
+  return out;
+}
+
 // The albedo of a request; draws the relief that follows the albedo's own
 // structure (joints, grout, spines, panels, fins, folds) into `relief`.
 cv::Mat MakeAlbedo(const TextureRequest& request, const std::vector<cv::Mat>& user_images, cv::Size size,
@@ -378,76 +458,15 @@ cv::Mat MakeAlbedo(const TextureRequest& request, const std::vector<cv::Mat>& us
       return Modulated(size, base, ValueNoise(size, 10.0, rng), 0.02f);
     case TextureKind::kWoodFloor:
     case TextureKind::kWood:
-    case TextureKind::kCounter: {
-      const bool floor = request.kind == TextureKind::kWoodFloor;
-      const int plank = floor ? 18 : 40;  // texels across a plank
-      cv::Mat grain = ValueNoise(cv::Size(size.width, std::max(2, size.height / 12)), 6.0, rng);
-      cv::resize(grain, grain, size, 0, 0, cv::INTER_LINEAR);
-      cv::Mat fine = ValueNoise(size, 2.0, rng);
-      cv::Mat out(size, CV_32FC3);
-      for (int r = 0; r < size.height; ++r) {
-        cv::Vec3f* o = out.ptr<cv::Vec3f>(r);
-        for (int c = 0; c < size.width; ++c) {
-          const int plank_index = c / plank;
-          const float tone = 0.75f + 0.5f * static_cast<float>((DeriveSeed(request.seed, plank_index) % 1000)) / 1000.0f;
-          const int joint_offset = static_cast<int>(DeriveSeed(request.seed + 7, plank_index) % 200);
-          const bool joint = (c % plank == 0) || (floor && (r + joint_offset) % 150 == 0);
-          const float g = 1.0f + 0.25f * grain.at<float>(r, c) + 0.08f * fine.at<float>(r, c);
-          o[c] = joint ? base * 0.35f : base * tone * g;
-          if (joint) relief.AddRect(cv::Rect(c, r, 1, 1), -0.003);  // the joints' bevelled grooves
-        }
-      }
-      return out;
-    }
-    case TextureKind::kTiles: {
-      cv::Mat out = Modulated(size, base, ValueNoise(size, 4.0, rng), 0.05f);
-      const int tile = 19;
-      for (int x = 0; x < size.width; x += tile) cv::line(out, {x, 0}, {x, size.height}, cv::Scalar::all(0.35), 1);
-      for (int y = 0; y < size.height; y += tile) cv::line(out, {0, y}, {size.width, y}, cv::Scalar::all(0.35), 1);
-      for (int x = 0; x < size.width; x += tile) relief.GrooveColumn(x, 0.003);  // grout, 3 mm back
-      for (int y = 0; y < size.height; y += tile) relief.GrooveRow(y, 0.003);
-      return out;
-    }
+    case TextureKind::kCounter: return MakeWoodPlanks(request, base, size, rng, relief);
+    case TextureKind::kTiles: return MakeTiles(size, base, rng, relief);
     case TextureKind::kFabric:
-    case TextureKind::kRug: {
-      cv::Mat out = Modulated(size, base, ValueNoise(size, 1.5, rng), 0.12f);
-      if (request.kind == TextureKind::kRug) {
-        const cv::Vec3f accent = RandomColor(rng, 0.05f, 0.6f);
-        for (int k = 1; k < 6; ++k) {
-          const int m = k * std::min(size.width, size.height) / 14;
-          cv::rectangle(out, cv::Rect(m, m, size.width - 2 * m, size.height - 2 * m), ToScalar(accent), 3);
-        }
-        DrawRandomShapes(out, 25, rng, 0.05f, 0.6f);
-      }
-      return out;
-    }
+    case TextureKind::kRug: return MakeFabric(request, base, size, rng);
     case TextureKind::kBooks: return MakeBooks(size, rng, relief);
     case TextureKind::kPicture:
     case TextureKind::kPoster:
-    case TextureKind::kDocking: {
-      cv::Mat out = user_images.empty() || request.kind == TextureKind::kDocking
-                        ? GradientBackground(size, rng)
-                        : UserPicture(size, user_images, rng);
-      if (user_images.empty() || request.kind == TextureKind::kDocking) {
-        const int shapes = request.kind == TextureKind::kDocking ? 220 : 40;
-        DrawRandomShapes(out, shapes, rng, 0.02f, 0.85f);
-        DrawText(out, request.kind == TextureKind::kPicture ? 1 : 5, rng, 0.01f, 0.9f);
-      }
-      AddFrame(out, request.kind == TextureKind::kPoster ? cv::Vec3f(0.8f, 0.8f, 0.8f) : cv::Vec3f(0.05f, 0.06f, 0.08f));
-      return out;
-    }
-    case TextureKind::kDoor: {
-      cv::Mat out = Modulated(size, base, ValueNoise(size, 8.0, rng), 0.03f);
-      const int m = size.width / 8;
-      cv::rectangle(out, cv::Rect(m, m, size.width - 2 * m, size.height / 2 - m), ToScalar(base * 0.7f), 2);
-      cv::rectangle(out, cv::Rect(m, size.height / 2 + m / 2, size.width - 2 * m, size.height / 2 - 2 * m), ToScalar(base * 0.7f), 2);
-      relief.AddRect(cv::Rect(m, m, size.width - 2 * m, size.height / 2 - m), -0.004);  // recessed panels
-      relief.AddRect(cv::Rect(m + 1, m + 1, size.width - 2 * m - 2, size.height / 2 - m - 2), -0.004);
-      relief.AddRect(cv::Rect(m, size.height / 2 + m / 2, size.width - 2 * m, size.height / 2 - 2 * m), -0.004);
-      relief.AddRect(cv::Rect(m + 1, size.height / 2 + m / 2 + 1, size.width - 2 * m - 2, size.height / 2 - 2 * m - 2), -0.004);
-      cv::circle(out, cv::Point(size.width - m / 2 - 2, size.height / 2), std::max(2, m / 3), cv::Scalar(0.5, 0.55, 0.6), cv::FILLED);
-      return out;
-    }
+    case TextureKind::kDocking: return MakePrint(request, user_images, size, rng);
+    case TextureKind::kDoor: return MakeDoor(size, base, rng, relief);
     case TextureKind::kWindow: return MakeWindow(size, rng);
     case TextureKind::kLampShade:
       return Modulated(size, base, ValueNoise(size, 3.0, rng), 0.05f);
