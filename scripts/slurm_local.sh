@@ -68,6 +68,8 @@ write_config() {
   fi
   chown munge:munge "$state/munge/munge.key"
   chmod 0400 "$state/munge/munge.key"
+  runuser -u munge -- test -r "$state/munge/munge.key" ||
+    fail "$state: the munge user cannot reach it (a folder above it is not searchable by others; chmod o+x it or choose another STATE_DIR)"
   cat >"$conf.tmp" <<EOF
 # One-node cluster of scripts/slurm_local.sh; every path lies under $state.
 ClusterName=duskmap

@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# ctest slurm/MatrixBadInput (label slurm; needs no Slurm): the bad input of
+# scripts/slurm_matrix.sh and scripts/slurm_merge.sh, each a one-line error
+# that submits nothing and leaves every shard's results as they were:
+#   - SHARDS not a positive integer, --only out of range or not indices, no config;
+#   - a merge with a shard missing (no status: never ran, or killed) and one that
+#     exited non-zero: one line per shard with its index and log, and no report.
+#
+#   tests/slurm/slurm_bad_input_test.sh DUSKMAP_BINARY
+set -euo pipefail
+repo=$(cd "$(dirname "$0")/../.." && pwd)
+duskmap=$(realpath "${1:?usage: $0 DUSKMAP_BINARY}")
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/duskmap_slurm_bad_input_test.XXXXXX")
+trap 'rc=$?; rm -rf "$tmp"; exit $rc' EXIT
+check() { echo "FAILED: $*" >&2; exit 1; }
+echo '{}' >"$tmp/config.json"
+root="$tmp/results"
+
+# expect_error EXIT_CODE NEEDLE COMMAND...: one line on stderr holding NEEDLE.
+expect_error() {
+  local code=$1 needle=$2 rc=0
+  shift 2
+  "$@" >"$tmp/out" 2>"$tmp/err" || rc=$?
+  [ "$rc" -eq "$code" ] || check "$*: exit $rc, not $code: $(cat "$tmp/err")"
+  [ "$(wc -l <"$tmp/err")" -eq 1 ] || check "$*: not one line: $(cat "$tmp/err")"
+  grep -qF -- "$needle" "$tmp/err" || check "$*: '$needle' missing in: $(cat "$tmp/err")"
+}
+matrix() { DUSKMAP_BIN="$duskmap" bash "$repo/scripts/slurm_matrix.sh" "$@"; }
+expect_error 2 "--only 5: shard 5 is out of range (0 to 2)" matrix "$tmp/config.json" 3 "$root" --only 5
+expect_error 2 "--only 1,3: shard 3 is out of range (0 to 2)" matrix "$tmp/config.json" 3 "$root" --only 1,3
+expect_error 2 "--only 1,x: expected shard indices" matrix "$tmp/config.json" 3 "$root" --only 1,x
+expect_error 2 "SHARDS 0: expected a positive integer" matrix "$tmp/config.json" 0 "$root"
+expect_error 2 "SHARDS 2x: expected a positive integer" matrix "$tmp/config.json" 2x "$root"
+expect_error 2 "$tmp/none.json: no such config file" matrix "$tmp/none.json" 3 "$root"
+[ ! -e "$root" ] || check "a refused submission created $root"
+
+# The merge: shard 0 finished, shard 1 exited 1, shard 2 never finished.
+mkdir -p "$root/logs" "$root/shard-0" "$root/shard-1"
+echo results >"$root/shard-0/run.json"
+echo partial >"$root/shard-1/run.json"
+echo 0 >"$root/logs/shard-0.exit"
+echo 1 >"$root/logs/shard-1.exit"
+rc=0
+bash "$repo/scripts/slurm_merge.sh" "$duskmap" "$tmp/config.json" 3 "$root" 2>"$tmp/err" || rc=$?
+[ "$rc" -eq 1 ] || check "merge over failed shards: exit $rc"
+[ "$(cat "$root/logs/report.exit")" = 1 ] || check "the merge's status is not recorded"
+grep -qxF "slurm_merge.sh: shard 1 of 3 exited with status 1: read $root/logs/shard-1.log; resubmit it alone: scripts/slurm_matrix.sh $tmp/config.json 3 $root --only 1" \
+  "$tmp/err" || check "shard 1: $(cat "$tmp/err")"
+grep -qxF "slurm_merge.sh: shard 2 of 3 did not finish (killed, cancelled or never started): read $root/logs/shard-2.log; resubmit it alone: scripts/slurm_matrix.sh $tmp/config.json 3 $root --only 2" \
+  "$tmp/err" || check "shard 2: $(cat "$tmp/err")"
+grep -qF "no report: 2 of 3 shards failed; the other shards' results are kept (--only 1,2 resubmits the failed ones)" \
+  "$tmp/err" || check "summary: $(cat "$tmp/err")"
+[ "$(wc -l <"$tmp/err")" -eq 3 ] || check "not one line per failed shard and a summary: $(cat "$tmp/err")"
+[ ! -e "$root/report" ] || check "a report was written"
+[ "$(cat "$root/shard-0/run.json")" = results ] && [ "$(cat "$root/shard-1/run.json")" = partial ] ||
+  check "the shards' results changed"
+echo PASSED

@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# ctest slurm/LocalClusterUpDown (label slurm): scripts/slurm_local.sh
+#   - a cluster that does not come up (its controller's port already taken)
+#     is one line naming the daemon and the log to read, exit 1, and leaves no
+#     daemon running;
+#   - up brings an idle node, up again says so, down stops each daemon by its
+#     PID, down again does nothing; no daemon is left.
+# Exits 77 (ctest SKIP_RETURN_CODE) without Slurm and munge, or when not root.
+set -euo pipefail
+repo=$(cd "$(dirname "$0")/../.." && pwd)
+for program in munged slurmctld slurmd sinfo; do
+  if ! command -v "$program" >/dev/null; then
+    echo "SKIPPED: Slurm is not installed ($program missing); scripts/setup.sh installs slurm-wlm and munge"
+    exit 77
+  fi
+done
+if [ "$(id -u)" -ne 0 ]; then
+  echo "SKIPPED: the local Slurm cluster needs root (slurmd runs jobs as their users)"
+  exit 77
+fi
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/duskmap_slurm_local_test.XXXXXX")
+chmod 755 "$tmp"  # munged runs as the munge user and must reach its folder inside
+state="$tmp/cluster"
+listener=""
+cleanup() {
+  local rc=$?
+  [ -z "$listener" ] || kill "$listener" 2>/dev/null || true
+  bash "$repo/scripts/slurm_local.sh" down "$state" >/dev/null || true
+  if [ "${DUSKMAP_KEEP_TEST_TMP:-0}" = 1 ]; then echo "kept $tmp"; else rm -rf "$tmp"; fi
+  exit $rc
+}
+trap cleanup EXIT
+check() { echo "FAILED: $*" >&2; exit 1; }
+daemons_of() {  # the live daemons whose command line names the state folder
+  local pid
+  for pid in $(pgrep -x 'munged|slurmctld|slurmd' || true); do
+    grep -qF "$state" "/proc/$pid/cmdline" 2>/dev/null && echo "$pid"
+  done
+  return 0
+}
+
+# The controller's port taken: slurmctld exits, and up says so on one line.
+export DUSKMAP_SLURM_PORTS="16927 16928" DUSKMAP_SLURM_UP_TIMEOUT_S=30
+/usr/bin/python3 -c '
+import socket, sys, time
+s = socket.socket(); s.bind(("0.0.0.0", 16927)); s.listen(); print("listening", flush=True); time.sleep(120)
+' >"$tmp/listener.log" &
+listener=$!
+until grep -q listening "$tmp/listener.log"; do sleep 0.1; done
+if bash "$repo/scripts/slurm_local.sh" up "$state" >"$tmp/up.out" 2>"$tmp/up.err"; then
+  check "up succeeded although its port is taken"
+fi
+[ "$(wc -l <"$tmp/up.err")" -eq 1 ] || check "not one line: $(cat "$tmp/up.err")"
+grep -qF "the cluster did not come up: slurmctld exited" "$tmp/up.err" || check "$(cat "$tmp/up.err")"
+grep -qF "read $state/log/slurmctld.log" "$tmp/up.err" || check "no log named: $(cat "$tmp/up.err")"
+[ -z "$(daemons_of)" ] || check "daemons left running after a failed up: $(daemons_of)"
+kill "$listener"
+wait "$listener" 2>/dev/null || true
+listener=""
+
+bash "$repo/scripts/slurm_local.sh" up "$state" | tee "$tmp/up.out"
+grep -q "cluster up: node .* idle" "$tmp/up.out" || check "up: $(cat "$tmp/up.out")"
+[ "$(daemons_of | wc -l)" -eq 3 ] || check "not three daemons: $(daemons_of)"
+bash "$repo/scripts/slurm_local.sh" up "$state" | grep -q "cluster already up" || check "up twice"
+[ "$(daemons_of | wc -l)" -eq 3 ] || check "up twice started more daemons"
+SLURM_CONF="$state/slurm.conf" sinfo -h -o '%T' | grep -q idle || check "sinfo does not see an idle node"
+bash "$repo/scripts/slurm_local.sh" down "$state" | tee "$tmp/down.out"
+[ "$(grep -c '^stopped ' "$tmp/down.out")" -eq 3 ] || check "down: $(cat "$tmp/down.out")"
+[ -z "$(daemons_of)" ] || check "daemons left after down: $(daemons_of)"
+bash "$repo/scripts/slurm_local.sh" down "$state" | grep -q "cluster not running" || check "down twice"
+echo PASSED
