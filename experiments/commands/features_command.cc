@@ -89,6 +89,57 @@ std::vector<PairSelector> PairSelectors(const EvalArgs& args) {
   return {};
 }
 
+// What `features eval` prints and writes: the report's header, its table
+// (Markdown) and its JSON.
+struct EvalOutput {
+  std::string header;
+  std::string table;
+  nlohmann::json json;
+};
+
+EvalOutput EvalPairs(const EvalArgs& args, std::vector<CorrespondencePair> pairs,
+                     const std::vector<PairSelector>& selectors,
+                     const std::vector<std::string>& types, const FeatureOptions& features) {
+  if (!selectors.empty()) pairs = SelectCorrespondencePairs(pairs, selectors);
+  EpipolarEvalOptions options;
+  options.types = types;
+  options.features = features;
+  std::cout << "features eval: " << pairs.size() << " pair(s) with hand-clicked correspondences in "
+            << args.data << ", " << options.types.size() << " type(s)\n";
+  const EpipolarEvalResult result = EvaluateOnCorrespondencePairs(pairs, options);
+  return {"Pairs: " + args.data + "\n\n", ToMarkdown(result), ToJson(result)};
+}
+
+EvalOutput EvalSequences(const EvalArgs& args, const std::vector<PairSelector>& selectors,
+                         const std::vector<std::string>& types, const FeatureOptions& features) {
+  std::optional<SequenceLayout> layout;
+  if (args.layout == "homography") layout = SequenceLayout::kHomography;
+  if (args.layout == "static") layout = SequenceLayout::kStatic;
+  SequenceSet set = FindImageSequences(args.data, layout);
+  std::string how = set.detected ? (set.layout == SequenceLayout::kStatic ? "detected: no H1toNp file"
+                                                                          : "detected: H1toNp files")
+                                 : "--layout " + args.layout;
+  if (set.layout == SequenceLayout::kStatic) {
+    for (const ImageSequence& seq : set.sequences) {
+      if (HasHomographyFiles(seq.directory)) how += "; the H files of " + seq.name + " are not used";
+    }
+  }
+  if (!selectors.empty()) SelectSequencePairs(selectors, &set.sequences);
+  FeatureEvalOptions options;
+  options.types = types;
+  options.features = features;
+  size_t pair_count = 0;
+  for (const ImageSequence& seq : set.sequences) pair_count += seq.pairs.size();
+  const std::string layout_line =
+      std::string("layout ") + SequenceLayoutName(set.layout) + " (" + how + ")";
+  std::cout << "features eval: " << set.sequences.size() << " sequence(s) in " << args.data << ", "
+            << layout_line << ", " << pair_count << " pair(s), " << options.types.size() << " type(s)\n";
+  const FeatureEvalResult result = EvaluateFeatures(set.sequences, options);
+  return {"Sequences: " + args.data + "\n\nLayout: " + std::string(SequenceLayoutName(set.layout)) +
+              " (" + how + ")\n\n",
+          ToMarkdown(result), ToJson(result)};
+}
+
 int RunEval(const EvalArgs& args) {
   SLAM_THROW_IF_NOT(ConfigError, args.threads >= 1) << "features eval: --threads must be >= 1";
   SLAM_THROW_IF_NOT(ConfigError, args.layout == "auto" || args.layout == "homography" ||
@@ -103,60 +154,20 @@ int RunEval(const EvalArgs& args) {
     JsonFields fields(ReadJsonFile(args.config), args.config);
     features = ReadJsonOptions<FeatureOptions>(fields);
   }
-  std::string table;
-  std::string header;
-  nlohmann::json json;
   const bool sequence_layout = args.layout == "homography" || args.layout == "static";
   std::vector<CorrespondencePair> pairs =
       sequence_layout ? std::vector<CorrespondencePair>() : FindCorrespondencePairs(args.data);
   SLAM_THROW_IF_NOT(InputError, args.layout != "pairs" || !pairs.empty())
       << args.data << ": no pair folder (01.*, 02.*, corrs.txt) here or one or two levels down";
-  if (!pairs.empty()) {
-    if (!selectors.empty()) pairs = SelectCorrespondencePairs(pairs, selectors);
-    EpipolarEvalOptions options;
-    options.types = types;
-    options.features = features;
-    std::cout << "features eval: " << pairs.size() << " pair(s) with hand-clicked correspondences in "
-              << args.data << ", " << options.types.size() << " type(s)\n";
-    const EpipolarEvalResult result = EvaluateOnCorrespondencePairs(pairs, options);
-    header = "Pairs: " + args.data + "\n\n";
-    table = ToMarkdown(result);
-    json = ToJson(result);
-  } else {
-    std::optional<SequenceLayout> layout;
-    if (args.layout == "homography") layout = SequenceLayout::kHomography;
-    if (args.layout == "static") layout = SequenceLayout::kStatic;
-    SequenceSet set = FindImageSequences(args.data, layout);
-    std::string how = set.detected ? (set.layout == SequenceLayout::kStatic ? "detected: no H1toNp file"
-                                                                            : "detected: H1toNp files")
-                                   : "--layout " + args.layout;
-    if (set.layout == SequenceLayout::kStatic) {
-      for (const ImageSequence& seq : set.sequences) {
-        if (HasHomographyFiles(seq.directory)) how += "; the H files of " + seq.name + " are not used";
-      }
-    }
-    if (!selectors.empty()) SelectSequencePairs(selectors, &set.sequences);
-    FeatureEvalOptions options;
-    options.types = types;
-    options.features = features;
-    size_t pair_count = 0;
-    for (const ImageSequence& seq : set.sequences) pair_count += seq.pairs.size();
-    const std::string layout_line =
-        std::string("layout ") + SequenceLayoutName(set.layout) + " (" + how + ")";
-    std::cout << "features eval: " << set.sequences.size() << " sequence(s) in " << args.data << ", "
-              << layout_line << ", " << pair_count << " pair(s), " << options.types.size() << " type(s)\n";
-    const FeatureEvalResult result = EvaluateFeatures(set.sequences, options);
-    header = "Sequences: " + args.data + "\n\nLayout: " + std::string(SequenceLayoutName(set.layout)) + " (" +
-             how + ")\n\n";
-    table = ToMarkdown(result);
-    json = ToJson(result);
-  }
-  std::cout << table;
+  const EvalOutput output = pairs.empty()
+                                ? EvalSequences(args, selectors, types, features)
+                                : EvalPairs(args, std::move(pairs), selectors, types, features);
+  std::cout << output.table;
   if (!args.out_dir.empty()) {
     CreateOutFolder(args.out_dir);
     const std::filesystem::path dir(args.out_dir);
-    WriteFile(dir / "features_eval.json", json.dump(2) + "\n");
-    WriteFile(dir / "features_eval.md", header + table);
+    WriteFile(dir / "features_eval.json", output.json.dump(2) + "\n");
+    WriteFile(dir / "features_eval.md", output.header + output.table);
     std::cout << "wrote " << (dir / "features_eval.json").string() << " and "
               << (dir / "features_eval.md").string() << "\n";
   }

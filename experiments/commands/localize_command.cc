@@ -143,6 +143,83 @@ void CheckSessionPaths(const LocalizeArgs& args) {
                                         {"--config", args.config}});
 }
 
+// The engine options: the config (or the defaults) with --odometry-cache.
+EngineOptions LocalizeOptions(const LocalizeArgs& args) {
+  EngineOptions options = args.config.empty() ? EngineOptions() : ReadEngineOptionsFile(args.config);
+  if (args.odometry_cache >= 0) options.localization.odometry_cache_size = args.odometry_cache;
+  return options;
+}
+
+// The map's feature type wins: its descriptors decide what can match.
+void UseMapFeatures(const LocalizeArgs& args, const Map& map, EngineOptions* options) {
+  if (!args.config.empty() && options->features.type != map.metadata().feature_type) {
+    std::cerr << "duskmap localize: note: " << args.config << ": features.type '"
+              << options->features.type << "' ignored; the map " << args.map
+              << " was built with '" << map.metadata().feature_type << "'\n";
+  }
+  options->features.type = map.metadata().feature_type;
+  if (args.config.empty()) {  // every feature option as the map was built (h5 file, onnx model, ...)
+    options->features = FeatureOptionsOfMap(map.metadata().feature_parameters_json, args.map);
+  }
+  options->Check();
+}
+
+// One session's records, trajectory and --summary file; returns its summary.
+nlohmann::json WriteSessionOutputs(const LocalizeArgs& args, const Map& map, size_t index,
+                                   const LocalizationRun& run, double map_load_s) {
+  const std::string& name = args.sessions[index];
+  const bool several = args.sessions.size() > 1;
+  const std::string records = SessionPath(args.records, name, several);
+  const std::string trajectory = SessionPath(args.trajectory, name, several);
+  const std::string summary_path = SessionPath(args.summary, name, several);
+  if (!records.empty()) WriteRecords(records, run.records);
+  if (!trajectory.empty()) WriteCorrectedTrajectory(trajectory, run.records);
+  nlohmann::json summary = ToJsonObject(Summarize(map, name, run, index == 0, map_load_s));
+  if (!summary_path.empty()) {
+    WriteFileAtomically(summary_path, [&](std::ostream& out) { out << summary.dump(2) << '\n'; });
+  }
+  return summary;
+}
+
+int RunLocalize(const LocalizeArgs& args) {
+  CheckSessionPaths(args);
+  EngineOptions options = LocalizeOptions(args);
+  // The words apart: each session's localizer imports a copy into its
+  // vocabulary and lets it go.
+  Stopwatch load;
+  MapAndWords loaded = LoadMapAndWords(args.map, options.LocalizationMapLoad());
+  const double map_load_s = load.ElapsedMs() / 1000.0;
+  const Map& map = loaded.map;
+  UseMapFeatures(args, map, &options);
+  DatasetReadOptions read;
+  read.allow_unordered = args.allow_unordered;
+  const auto dataset = OpenDataset(args.dataset, args.format, read);
+  // Every session is opened before the first is localized: a wrong name
+  // fails before any work.
+  std::vector<std::unique_ptr<SessionReader>> readers;
+  for (const std::string& name : args.sessions) readers.push_back(dataset->OpenSession(name));
+  nlohmann::json summaries = nlohmann::json::array();
+  bool warned = false;
+  for (size_t i = 0; i < readers.size(); ++i) {
+    const bool last = i + 1 == readers.size();
+    const LocalizationRun run = LocalizeSession(
+        map, last ? std::move(loaded.words) : MapWords(loaded.words), *readers[i], options);
+    readers[i].reset();
+    // (A map without words has no index to restore or rebuild.)
+    if (!run.index_restore.restored && !run.index_restore.rebuild_reason.empty() && !warned) {
+      std::cerr << "duskmap localize: warning: " << args.map
+                << ": vocabulary index rebuilt (" << run.index_restore.rebuild_reason << ", "
+                << run.index_restore.seconds << " s); the map is unchanged\n";
+      warned = true;
+    }
+    summaries.push_back(WriteSessionOutputs(args, map, i, run, map_load_s));
+  }
+  // stdout leaves out the one-entry-per-frame list (the --summary file has it).
+  for (nlohmann::json& summary : summaries) summary.erase("matched_session_per_frame");
+  std::cout << (args.sessions.size() > 1 ? summaries : summaries[0]).dump(2) << '\n';
+  return 0;
+}
+
 RunFn SetupLocalize(CLI::App& command) {
   auto args = std::make_shared<LocalizeArgs>();
   command.add_option("--map", args->map, "map file (from duskmap map)")->required();
@@ -166,66 +243,7 @@ RunFn SetupLocalize(CLI::App& command) {
                    "read rgb.txt/depth.txt as recorded: sort them and drop unmatched frames (real TUM recordings)");
   command.add_option("--odometry-cache", args->odometry_cache,
                      "odometry-cache size (0 = paper-era rule; overrides the config)");
-  return [args] {
-    CheckSessionPaths(*args);
-    EngineOptions options = args->config.empty() ? EngineOptions() : ReadEngineOptionsFile(args->config);
-    if (args->odometry_cache >= 0) options.localization.odometry_cache_size = args->odometry_cache;
-    // The words apart: each session's localizer imports a copy into its
-    // vocabulary and lets it go.
-    Stopwatch load;
-    MapAndWords loaded = LoadMapAndWords(args->map, options.LocalizationMapLoad());
-    const double map_load_s = load.ElapsedMs() / 1000.0;
-    const Map& map = loaded.map;
-    // The map's feature type wins: its descriptors decide what can match.
-    if (!args->config.empty() && options.features.type != map.metadata().feature_type) {
-      std::cerr << "duskmap localize: note: " << args->config << ": features.type '"
-                << options.features.type << "' ignored; the map " << args->map
-                << " was built with '" << map.metadata().feature_type << "'\n";
-    }
-    options.features.type = map.metadata().feature_type;
-    if (args->config.empty()) {  // every feature option as the map was built (h5 file, onnx model, ...)
-      options.features = FeatureOptionsOfMap(map.metadata().feature_parameters_json, args->map);
-    }
-    options.Check();
-    DatasetReadOptions read;
-    read.allow_unordered = args->allow_unordered;
-    const auto dataset = OpenDataset(args->dataset, args->format, read);
-    // Every session is opened before the first is localized: a wrong name
-    // fails before any work.
-    std::vector<std::unique_ptr<SessionReader>> readers;
-    for (const std::string& name : args->sessions) readers.push_back(dataset->OpenSession(name));
-    const bool several = args->sessions.size() > 1;
-    nlohmann::json summaries = nlohmann::json::array();
-    bool warned = false;
-    for (size_t i = 0; i < readers.size(); ++i) {
-      const std::string& name = args->sessions[i];
-      const bool last = i + 1 == readers.size();
-      const LocalizationRun run = LocalizeSession(
-          map, last ? std::move(loaded.words) : MapWords(loaded.words), *readers[i], options);
-      readers[i].reset();
-      // (A map without words has no index to restore or rebuild.)
-      if (!run.index_restore.restored && !run.index_restore.rebuild_reason.empty() && !warned) {
-        std::cerr << "duskmap localize: warning: " << args->map
-                  << ": vocabulary index rebuilt (" << run.index_restore.rebuild_reason << ", "
-                  << run.index_restore.seconds << " s); the map is unchanged\n";
-        warned = true;
-      }
-      const std::string records = SessionPath(args->records, name, several);
-      const std::string trajectory = SessionPath(args->trajectory, name, several);
-      const std::string summary_path = SessionPath(args->summary, name, several);
-      if (!records.empty()) WriteRecords(records, run.records);
-      if (!trajectory.empty()) WriteCorrectedTrajectory(trajectory, run.records);
-      nlohmann::json summary = ToJsonObject(Summarize(map, name, run, i == 0, map_load_s));
-      if (!summary_path.empty()) {
-        WriteFileAtomically(summary_path, [&](std::ostream& out) { out << summary.dump(2) << '\n'; });
-      }
-      summaries.push_back(std::move(summary));
-    }
-    // stdout leaves out the one-entry-per-frame list (the --summary file has it).
-    for (nlohmann::json& summary : summaries) summary.erase("matched_session_per_frame");
-    std::cout << (several ? summaries : summaries[0]).dump(2) << '\n';
-    return 0;
-  };
+  return [args] { return RunLocalize(*args); };
 }
 
 const bool kRegistered = RegisterCommand(
