@@ -298,8 +298,9 @@ AgreementReport ComputeAgreement(const std::vector<ReportTable>& tables,
   return agreement;
 }
 
-std::string AgreementToMarkdown(const AgreementReport& agreement) {
-  std::ostringstream out;
+namespace {
+
+void DeviationsMarkdown(const AgreementReport& agreement, std::ostream& out) {
   out << "**Mean absolute deviation from the paper** (cells with both values; calibration = "
          "what the synthetic dataset may be tuned on, held out = never tuned on)\n\n"
       << "| table | unit | cells | mean abs. deviation | largest (cell) | role |\n"
@@ -313,7 +314,9 @@ std::string AgreementToMarkdown(const AgreementReport& agreement) {
                 : "–")
         << " | " << AgreementRoleName(d.role) << " |\n";
   }
-  const RankAgreement& r = agreement.ranking;
+}
+
+void RankingMarkdown(const RankAgreement& r, std::ostream& out) {
   out << "\n**Features ranked by mean single-session-map re-localization**: Spearman ρ = "
       << OptionalNumber(r.spearman_rho, 2) << " over " << r.features.size() << " features";
   if (!r.features.empty()) {
@@ -334,6 +337,11 @@ std::string AgreementToMarkdown(const AgreementReport& agreement) {
         << FormatFixed(*r.spearman_rho_high, 2);
   }
   out << "\n\n";
+}
+
+// Night minus day, the signed deviation per single-session map and the
+// features per frame: one paragraph each, when the report has it.
+void MapAndFeatureMarkdown(const AgreementReport& agreement, std::ostream& out) {
   const NightMinusDay& n = agreement.night_minus_day;
   if (!n.night_row.empty()) {
     out << "**Night map minus day map** (map " << n.night_row << " − map " << n.day_row
@@ -357,21 +365,26 @@ std::string AgreementToMarkdown(const AgreementReport& agreement) {
     }
     out << "\n\n";
   }
-  if (!agreement.consecutive_bounds.empty()) {
-    out << "**Consecutive sessions, within 55 cm against the paths' bound** (the share had every "
-           "frame re-localized: a frame more than 55 cm after the one before never counts; "
-           "measured / bound (paper), %):";
-    for (const ConsecutiveBound& b : agreement.consecutive_bounds) {
-      out << " " << b.row << ":";
-      for (size_t i = 0; i < b.features.size(); ++i) {
-        out << " " << b.features[i] << " " << FormatFixed(b.measured_pct[i], 0) << "/"
-            << FormatFixed(b.bound_pct[i], 0);
-        if (b.paper_pct[i]) out << " (" << FormatFixed(*b.paper_pct[i], 0) << ")";
-      }
-      out << ";";
+}
+
+void ConsecutiveBoundsMarkdown(const std::vector<ConsecutiveBound>& bounds, std::ostream& out) {
+  if (bounds.empty()) return;
+  out << "**Consecutive sessions, within 55 cm against the paths' bound** (the share had every "
+         "frame re-localized: a frame more than 55 cm after the one before never counts; "
+         "measured / bound (paper), %):";
+  for (const ConsecutiveBound& b : bounds) {
+    out << " " << b.row << ":";
+    for (size_t i = 0; i < b.features.size(); ++i) {
+      out << " " << b.features[i] << " " << FormatFixed(b.measured_pct[i], 0) << "/"
+          << FormatFixed(b.bound_pct[i], 0);
+      if (b.paper_pct[i]) out << " (" << FormatFixed(*b.paper_pct[i], 0) << ")";
     }
-    out << "\n\n";
+    out << ";";
   }
+  out << "\n\n";
+}
+
+void FindingsMarkdown(const AgreementReport& agreement, std::ostream& out) {
   out << "**The paper's findings**: " << agreement.FindingsReproduced() << " of "
       << agreement.FindingsDecided() << " decided reproduced\n\n"
       << "| finding | rule | measured | verdict | the rule on the paper's numbers |\n"
@@ -381,6 +394,17 @@ std::string AgreementToMarkdown(const AgreementReport& agreement) {
         << " | " << Cell(f.measured) << " | " << FindingVerdictName(f.verdict) << " | "
         << Cell(f.paper) << " |\n";
   }
+}
+
+}  // namespace
+
+std::string AgreementToMarkdown(const AgreementReport& agreement) {
+  std::ostringstream out;
+  DeviationsMarkdown(agreement, out);
+  RankingMarkdown(agreement.ranking, out);
+  MapAndFeatureMarkdown(agreement, out);
+  ConsecutiveBoundsMarkdown(agreement.consecutive_bounds, out);
+  FindingsMarkdown(agreement, out);
   return out.str();
 }
 

@@ -76,6 +76,42 @@ void FillPaper(const std::optional<PaperReference>& paper, const std::string& ta
   if (paper) paper->FillRows(table, metric, out);
 }
 
+// Every localization job together (each once: the closest-in-time row
+// reuses the single maps' jobs), at the three thresholds: what the paper,
+// without ground truth, could not report. None without ground truth.
+std::optional<ReportTable> GroundTruthThresholdsTable(const ExperimentOptions& options,
+                                                      const ExperimentPlan& plan,
+                                                      const ExperimentResults& results) {
+  std::map<std::string, CellTotals> by_feature;
+  std::set<std::string> counted;
+  for (const MatrixCell& cell : plan.cells) {
+    const auto it = results.localization.find(cell.job_id);
+    if (it == results.localization.end() || !counted.insert(cell.job_id).second) continue;
+    by_feature[cell.feature].Add(it->second);
+  }
+  bool any_truth = false;
+  for (const auto& [feature, t] : by_feature) any_truth = any_truth || t.has_ground_truth;
+  if (!any_truth) return std::nullopt;
+  const char* labels[3] = {"0.25 m/2°", "0.5 m/5°", "5 m/10°"};
+  std::vector<std::string> threshold_rows;
+  for (const char* label : labels) threshold_rows.push_back(std::string("correct within ") + label + " (%)");
+  for (const char* label : labels) threshold_rows.push_back(std::string("wrong beyond ") + label + " (count)");
+  ReportTable thresholds(kTableGroundTruthThresholds,
+                         "Re-localizations against ground truth at three thresholds, every "
+                         "localization job together",
+                         threshold_rows, options.features, 1);
+  for (const std::string& feature : options.features) {
+    const auto found = by_feature.find(feature);
+    if (found == by_feature.end() || found->second.frames == 0) continue;
+    const CellTotals& f = found->second;
+    for (size_t i = 0; i < 3; ++i) {
+      thresholds.SetMeasured(threshold_rows[i], feature, f.Pct(f.within[i]));
+      thresholds.SetMeasured(threshold_rows[3 + i], feature, f.relocalized - f.within[i]);
+    }
+  }
+  return thresholds;
+}
+
 std::vector<ReportTable> RelocalizationTables(const ExperimentOptions& options,
                                               const ExperimentPlan& plan,
                                               const ExperimentResults& results,
@@ -120,38 +156,8 @@ std::vector<ReportTable> RelocalizationTables(const ExperimentOptions& options,
   FillPaper(paper, table, "visual_inliers_pct", &inliers);
   FillPaper(paper, table, "jumps_mm", &jumps);
   std::vector<ReportTable> tables = {relocalized, inliers, jumps, correct, wrong, no_candidate};
-
-  // Every localization job together (each once: the closest-in-time row
-  // reuses the single maps' jobs), at the three thresholds: what the paper,
-  // without ground truth, could not report.
-  std::map<std::string, CellTotals> by_feature;
-  std::set<std::string> counted;
-  for (const MatrixCell& cell : plan.cells) {
-    const auto it = results.localization.find(cell.job_id);
-    if (it == results.localization.end() || !counted.insert(cell.job_id).second) continue;
-    by_feature[cell.feature].Add(it->second);
-  }
-  bool any_truth = false;
-  for (const auto& [feature, t] : by_feature) any_truth = any_truth || t.has_ground_truth;
-  if (any_truth) {
-    const char* labels[3] = {"0.25 m/2°", "0.5 m/5°", "5 m/10°"};
-    std::vector<std::string> threshold_rows;
-    for (const char* label : labels) threshold_rows.push_back(std::string("correct within ") + label + " (%)");
-    for (const char* label : labels) threshold_rows.push_back(std::string("wrong beyond ") + label + " (count)");
-    ReportTable thresholds(kTableGroundTruthThresholds,
-                           "Re-localizations against ground truth at three thresholds, every "
-                           "localization job together",
-                           threshold_rows, options.features, 1);
-    for (const std::string& feature : options.features) {
-      const auto found = by_feature.find(feature);
-      if (found == by_feature.end() || found->second.frames == 0) continue;
-      const CellTotals& f = found->second;
-      for (size_t i = 0; i < 3; ++i) {
-        thresholds.SetMeasured(threshold_rows[i], feature, f.Pct(f.within[i]));
-        thresholds.SetMeasured(threshold_rows[3 + i], feature, f.relocalized - f.within[i]);
-      }
-    }
-    tables.push_back(thresholds);
+  if (auto thresholds = GroundTruthThresholdsTable(options, plan, results)) {
+    tables.push_back(std::move(*thresholds));
   }
   return tables;
 }
@@ -241,6 +247,71 @@ std::vector<ReportTable> MapTables(const ExperimentOptions& options, const Exper
   return tables;
 }
 
+// One feature's column of the timing table, as measured.
+struct FeatureTimings {
+  // Over the feature's localization jobs (each job once).
+  Mean detection, te, features, lcd_single, lcd_full, lcd_reduced, lcd_te_full;
+  // Over its maps.
+  Mean vocab_single, map_single_s;
+  std::optional<double> vocab_full, vocab_reduced, descriptor_bytes;
+};
+
+FeatureTimings MeasureTimings(const std::string& feature, const ExperimentPlan& plan,
+                              const ExperimentResults& results) {
+  FeatureTimings t;
+  std::set<std::string> seen;
+  for (const MatrixCell& cell : plan.cells) {
+    if (cell.feature != feature || !seen.insert(cell.job_id).second) continue;
+    const auto it = results.localization.find(cell.job_id);
+    if (it == results.localization.end()) continue;
+    const LocalizationJobSummary& s = it->second;
+    t.detection.Add(s.mean_times_ms.features);
+    t.te.Add(s.mean_times_ms.transformation_estimation);
+    t.features.Add(s.mean_features);
+    const MapSpec used = plan.FindJob(cell.job_id)->map;
+    const double lcd = s.mean_times_ms.loop_closure_detection;
+    if (used.kind == MapKind::kSingle) t.lcd_single.Add(lcd);
+    if (used.label == kFullMerge) {
+      t.lcd_full.Add(lcd);
+      t.lcd_te_full.Add(s.median_lcd_te_ms);
+    }
+    if (used.label == kReduced) t.lcd_reduced.Add(lcd);
+  }
+  for (const auto& [id, s] : results.maps) {
+    const Job* job = plan.FindJob(id);
+    if (job == nullptr || job->feature != feature) continue;
+    if (job->map.kind == MapKind::kSingle) {
+      t.vocab_single.Add(s.vocabulary_words / 1000.0);
+      t.map_single_s.Add(s.build_wall_s);
+    }
+    if (job->map.label == kFullMerge) t.vocab_full = s.vocabulary_words / 1000.0;
+    if (job->map.label == kReduced) t.vocab_reduced = s.vocabulary_words / 1000.0;
+    t.descriptor_bytes = static_cast<double>(s.descriptor_bytes_per_feature);
+  }
+  return t;
+}
+
+void SetTimingPaper(const PaperReference& paper, const std::vector<std::string>& rows,
+                    const std::string& feature, ReportTable* table) {
+  const std::string t = "table_timing";
+  const std::vector<std::pair<std::string, std::vector<std::string>>> paper_keys = {
+      {rows[0], {t, "feature_detection_ms"}},
+      {rows[1], {t, "loop_closure_detection_ms", "single-session maps"}},
+      {rows[2], {t, "loop_closure_detection_ms", kFullMerge}},
+      {rows[3], {t, "loop_closure_detection_ms", kReduced}},
+      {rows[4], {t, "transformation_estimation_ms"}},
+      {rows[5], {t, "features_per_frame"}},
+      {rows[6], {t, "vocabulary_size_thousands", "single-session maps"}},
+      {rows[7], {t, "vocabulary_size_thousands", kFullMerge}},
+      {rows[8], {t, "vocabulary_size_thousands", kReduced}}};
+  for (const auto& [row, keys] : paper_keys) {
+    if (const auto value = paper.Value(keys, feature)) table->SetPaper(row, feature, *value);
+  }
+  const auto dims = paper.Value({t, "descriptor_dimension"}, feature);
+  const auto element = paper.Value({t, "descriptor_bytes_per_element"}, feature);
+  if (dims && element) table->SetPaper(rows[9], feature, *dims * *element);
+}
+
 ReportTable TimingTable(const ExperimentOptions& options, const ExperimentPlan& plan,
                         const ExperimentResults& results,
                         const std::optional<PaperReference>& paper) {
@@ -263,64 +334,16 @@ ReportTable TimingTable(const ExperimentOptions& options, const ExperimentPlan& 
                     "features (s, wall)",
                     rows, options.features, 1);
   for (const std::string& feature : options.features) {
-    Mean detection, te, features, lcd_single, lcd_full, lcd_reduced, vocab_single, lcd_te_full,
-        map_single_s;
-    std::set<std::string> seen;
-    for (const MatrixCell& cell : plan.cells) {
-      if (cell.feature != feature || !seen.insert(cell.job_id).second) continue;
-      const auto it = results.localization.find(cell.job_id);
-      if (it == results.localization.end()) continue;
-      const LocalizationJobSummary& s = it->second;
-      detection.Add(s.mean_times_ms.features);
-      te.Add(s.mean_times_ms.transformation_estimation);
-      features.Add(s.mean_features);
-      const MapSpec used = plan.FindJob(cell.job_id)->map;
-      const double lcd = s.mean_times_ms.loop_closure_detection;
-      if (used.kind == MapKind::kSingle) lcd_single.Add(lcd);
-      if (used.label == kFullMerge) {
-        lcd_full.Add(lcd);
-        lcd_te_full.Add(s.median_lcd_te_ms);
-      }
-      if (used.label == kReduced) lcd_reduced.Add(lcd);
-    }
-    std::optional<double> vocab_full, vocab_reduced, descriptor_bytes;
-    for (const auto& [id, s] : results.maps) {
-      const Job* job = plan.FindJob(id);
-      if (job == nullptr || job->feature != feature) continue;
-      if (job->map.kind == MapKind::kSingle) {
-        vocab_single.Add(s.vocabulary_words / 1000.0);
-        map_single_s.Add(s.build_wall_s);
-      }
-      if (job->map.label == kFullMerge) vocab_full = s.vocabulary_words / 1000.0;
-      if (job->map.label == kReduced) vocab_reduced = s.vocabulary_words / 1000.0;
-      descriptor_bytes = static_cast<double>(s.descriptor_bytes_per_feature);
-    }
+    const FeatureTimings m = MeasureTimings(feature, plan, results);
     const std::vector<std::pair<std::string, std::optional<double>>> values = {
-        {rows[0], detection.Get()},   {rows[1], lcd_single.Get()}, {rows[2], lcd_full.Get()},
-        {rows[3], lcd_reduced.Get()}, {rows[4], te.Get()},         {rows[5], features.Get()},
-        {rows[6], vocab_single.Get()}, {rows[7], vocab_full},      {rows[8], vocab_reduced},
-        {rows[9], descriptor_bytes}, {rows[10], lcd_te_full.Get()}, {rows[11], map_single_s.Get()}};
+        {rows[0], m.detection.Get()},   {rows[1], m.lcd_single.Get()}, {rows[2], m.lcd_full.Get()},
+        {rows[3], m.lcd_reduced.Get()}, {rows[4], m.te.Get()},         {rows[5], m.features.Get()},
+        {rows[6], m.vocab_single.Get()}, {rows[7], m.vocab_full},      {rows[8], m.vocab_reduced},
+        {rows[9], m.descriptor_bytes}, {rows[10], m.lcd_te_full.Get()}, {rows[11], m.map_single_s.Get()}};
     for (const auto& [row, value] : values) {
       if (value) table.SetMeasured(row, feature, *value);
     }
-    if (!paper) continue;
-    const std::string t = "table_timing";
-    const std::vector<std::pair<std::string, std::vector<std::string>>> paper_keys = {
-        {rows[0], {t, "feature_detection_ms"}},
-        {rows[1], {t, "loop_closure_detection_ms", "single-session maps"}},
-        {rows[2], {t, "loop_closure_detection_ms", kFullMerge}},
-        {rows[3], {t, "loop_closure_detection_ms", kReduced}},
-        {rows[4], {t, "transformation_estimation_ms"}},
-        {rows[5], {t, "features_per_frame"}},
-        {rows[6], {t, "vocabulary_size_thousands", "single-session maps"}},
-        {rows[7], {t, "vocabulary_size_thousands", kFullMerge}},
-        {rows[8], {t, "vocabulary_size_thousands", kReduced}}};
-    for (const auto& [row, keys] : paper_keys) {
-      if (const auto value = paper->Value(keys, feature)) table.SetPaper(row, feature, *value);
-    }
-    const auto dims = paper->Value({t, "descriptor_dimension"}, feature);
-    const auto element = paper->Value({t, "descriptor_bytes_per_element"}, feature);
-    if (dims && element) table.SetPaper(rows[9], feature, *dims * *element);
+    if (paper) SetTimingPaper(*paper, rows, feature, &table);
   }
   return table;
 }
