@@ -53,6 +53,13 @@ std::vector<ShardFolder> ReadShardFolders(const std::vector<fs::path>& results_d
 void CheckShardsOfOneRun(const std::vector<ShardFolder>& folders) {
   SLAM_THROW_IF_NOT(InputError, !folders.empty()) << "--results: no results folder";
   const ShardFolder& first = folders.front();
+  for (const ShardFolder& folder : folders) {
+    const RunManifest& m = folder.manifest;
+    SLAM_THROW_IF_NOT(InputError, m.shard_count >= 1 && m.shard_index >= 0 &&
+                                      m.shard_index < m.shard_count)
+        << ManifestPath(folder) << ": shard " << ShardName(m)
+        << " is out of range (malformed run manifest)";
+  }
   std::vector<const ShardFolder*> holder(first.manifest.shard_count, nullptr);
   for (const ShardFolder& folder : folders) {
     const std::string why = OtherRun(first.manifest, folder.manifest);
@@ -60,9 +67,6 @@ void CheckShardsOfOneRun(const std::vector<ShardFolder>& folders) {
         << ManifestPath(folder) << ": not a shard of the run in " << ManifestPath(first) << " ("
         << why << "); merge only the shards of one run";
     const int index = folder.manifest.shard_index;
-    SLAM_THROW_IF_NOT(InputError, index >= 0 && index < first.manifest.shard_count)
-        << ManifestPath(folder) << ": shard " << ShardName(folder.manifest)
-        << " is out of range (malformed run manifest)";
     SLAM_THROW_IF_NOT(InputError, holder[index] == nullptr)
         << ManifestPath(folder) << ": shard " << ShardName(folder.manifest) << " given twice (also "
         << ManifestPath(*holder[index]) << ")";

@@ -123,6 +123,23 @@ TEST_F(ShardCli, ShardGivenTwiceIsRefused) {
   EXPECT_FALSE(fs::exists(dir_ / "twice"));
 }
 
+// A run.json whose shard is out of range (edited, or damaged) is refused
+// before any folder is sized by it.
+TEST_F(ShardCli, ShardOutOfRangeInRunJsonIsRefused) {
+  for (const auto& [index, count] : {std::pair{0, -1}, std::pair{3, 3}, std::pair{-2, 3}}) {
+    fs::remove_all(dir_ / "bad0");
+    fs::copy(dir_ / "shard0", dir_ / "bad0", fs::copy_options::recursive);
+    nlohmann::json manifest = nlohmann::json::parse(std::ifstream(dir_ / "bad0" / "run.json"));
+    manifest["shard"] = {{"index", index}, {"count", count}};
+    std::ofstream(dir_ / "bad0" / "run.json") << manifest.dump(2);
+    const std::string shard = std::to_string(index) + "/" + std::to_string(count);
+    ExpectOneLineError(RunDuskmap(Report({"bad0", "shard1", "shard2"}, "bad_range")),
+                       {(dir_ / "bad0" / "run.json").string() + ": shard " + shard +
+                        " is out of range (malformed run manifest)"});
+    EXPECT_FALSE(fs::exists(dir_ / "bad_range")) << shard;
+  }
+}
+
 TEST_F(ShardCli, MissingShardIsNamedByItsIndex) {
   const auto before = Shards();
   ExpectOneLineError(RunDuskmap(Report({"shard0", "shard2"}, "missing")),
