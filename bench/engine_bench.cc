@@ -49,7 +49,9 @@ std::string DatasetPath() {
   if (const char* env = std::getenv("DUSKMAP_BENCH_DATASET")) return env;
   const std::string path = bench::BenchCachePath("duskmap_engine_bench_" + std::to_string(BenchFrames()));
   if (!std::filesystem::exists(path)) {
-    GeneratorConfig config;
+    GeneratorConfig config;  // the box apartment without motion blur
+    ApplyGeneratorModel("boxes-2026-12-02", &config);
+    config.camera.motion_blur_scale = 0.0;
     config.max_frames = BenchFrames();
     config.sessions = {{"1", "16:46", "mapping"}, {"2", "17:27", "mapping"},
                        {"3", "17:54", "mapping"}, {"4", "18:27", "mapping"},

@@ -19,8 +19,15 @@
 namespace duskmap {
 namespace {
 
-struct Fixture {
+// The box apartment (boxes-2026-12-02).
+GeneratorConfig BoxesConfig() {
   GeneratorConfig config;
+  ApplyGeneratorModel("boxes-2026-12-02", &config);
+  return config;
+}
+
+struct Fixture {
+  GeneratorConfig config = BoxesConfig();
   Scene scene = BuildApartment(ApartmentOptions());
   std::vector<TimedPose> route = GenerateRoute(RouteOptions(), ApartmentPatrolRoute(), 1);
 };

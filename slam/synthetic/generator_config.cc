@@ -15,6 +15,7 @@ std::vector<SessionSpec> GeneratorConfig::DefaultSessions() {
 }
 
 void GeneratorConfig::Check() const {
+  CheckGeneratorModel(model, "model");
   SLAM_THROW_IF_NOT(ConfigError, threads >= 1 && threads <= 64) << "threads must be in [1, 64], got " << threads;
   SLAM_THROW_IF_NOT(ConfigError, max_frames >= 0) << "max_frames must be >= 0, got " << max_frames;
   scene.Check();
@@ -40,7 +41,19 @@ void GeneratorConfig::Check() const {
 }
 
 GeneratorConfig ReadGeneratorConfig(const std::string& path) {
-  return ReadJsonOptions<GeneratorConfig>(ReadJsonFile(path), path);
+  const nlohmann::json json = ReadJsonFile(path);
+  JsonFields fields(json, path);
+  std::string model = kDefaultGeneratorModel;
+  fields.Read("model", &model);
+  GeneratorConfig config;
+  ApplyGeneratorModel(model, &config, path + ".model");
+  JsonCodecReader::ReadFields(fields, &config);
+  try {
+    config.Check();
+  } catch (const ConfigError& e) {
+    SLAM_THROW(ConfigError) << path << ": " << e.what();
+  }
+  return config;
 }
 
 }  // namespace duskmap

@@ -1,12 +1,15 @@
-// The configuration of `duskmap generate` (configs/sunset_apartment.json):
-// every model constant, the sessions and the seeds. Read strictly: an unknown
-// key anywhere is a ConfigError naming it.
+// The configuration of `duskmap generate`: every model constant, the sessions
+// and the seeds. Its defaults are the default dataset (the default model,
+// generator_models.h); a config file selects a model with "model" and sets
+// what differs from it. Read strictly: an unknown key anywhere is a
+// ConfigError naming it.
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "slam/synthetic/generator_models.h"
 #include "slam/synthetic/light/lighting.h"
 #include "slam/synthetic/scene/apartment.h"
 #include "slam/synthetic/sensor/camera_model.h"
@@ -22,7 +25,13 @@ struct SessionSpec {
   std::string role = "mapping";  // "mapping" or "localization"
 };
 
+// The building blocks' options (ApartmentOptions, LightingOptions,
+// CameraModelOptions, ...) default to their features off, which their unit
+// tests use; GeneratorConfig's constructor sets the default model on them.
 struct GeneratorConfig {
+  GeneratorConfig() { ApplyGeneratorModel(kDefaultGeneratorModel, this); }
+
+  std::string model;     // the model these values started from (generator_models.h)
   uint64_t seed = 2024;  // base seed of everything (textures, routes, noise)
   int threads = 2;       // sessions generated in parallel (output is identical)
   int max_frames = 0;    // 0 = the whole route; otherwise the first N frames (tests)
@@ -40,7 +49,8 @@ struct GeneratorConfig {
   void Check() const;
 };
 
-// Reads a config file; throws ConfigError "<path>:<key>: <problem>".
+// Reads a config file: its "model" (absent: the default model), then every
+// other key over that model's values. Throws ConfigError "<path>.<key>: <problem>".
 GeneratorConfig ReadGeneratorConfig(const std::string& path);
 
 }  // namespace duskmap

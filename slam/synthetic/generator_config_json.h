@@ -1,7 +1,9 @@
 // JSON codecs of the dataset generator's configuration
 // (configs/sunset_apartment.json; slam/core/json_codec.h): one field list per
-// model's options, composed by GeneratorConfig's.
-//   {"seed": 2024, "threads": 2, "max_frames": 0,
+// building block's options, composed by GeneratorConfig's. Every key is optional: the
+// file's "model" (generator_models.h; absent: the default model) gives the
+// values it does not set (ReadGeneratorConfig).
+//   {"model": "run23-2026-12-06", "seed": 2024, "threads": 2, "max_frames": 0,
 //    "scene": {"wall_height_m": 2.5, ..., "furniture": {"catalog": "", "max_edge_m": 0.12,
 //              "pieces": [{"model": "bed1", "room": "bedroom", "position_m": [x, y]}]}},
 //    "lighting": {"latitude_deg": 45.4, ...}, "camera": {...}, "depth": {...},
@@ -187,6 +189,7 @@ template <>
 struct JsonCodec<GeneratorConfig> {
   template <typename F, typename O>
   static void Visit(F& f, O& o) {
+    f("model", o.model);
     f("seed", o.seed);
     f("threads", o.threads);
     f("max_frames", o.max_frames);

@@ -17,7 +17,11 @@ namespace duskmap::testing {
 // sessions "A" (16:51) and "F" (19:42).
 inline const std::string& TinyDatasetPath() {
   static const std::string path = CachedFixture("engine_tiny_dataset", [](const std::string& p) {
+    // The box apartment without motion blur, on which the engine's bounds
+    // were measured.
     GeneratorConfig config;
+    ApplyGeneratorModel("boxes-2026-12-02", &config);
+    config.camera.motion_blur_scale = 0.0;
     // 640x480: at 320x240 SURF registration accepted transforms 5-9 deg off
     // and re-localized only 63 % of same-light frames (measured).
     config.max_frames = 25;

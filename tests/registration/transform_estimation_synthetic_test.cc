@@ -29,8 +29,11 @@ namespace {
 
 constexpr int kFrames[] = {0, 4, 8, 12};
 
+// The box apartment without motion blur, on which the bounds were measured.
 GeneratorConfig SmallConfig() {
   GeneratorConfig config;
+  ApplyGeneratorModel("boxes-2026-12-02", &config);
+  config.camera.motion_blur_scale = 0.0;
   config.lighting.light_texel_m = 0.1;          // coarser light map: faster preparation
   return config;
 }

@@ -71,7 +71,9 @@ bool SamePlace(const Rigid3d& a, const Rigid3d& b) {
 // Renders the default session 1 route (16:46, sun in the windows) at
 // 320x240 on the flat scene and maps it frame by frame.
 std::vector<MappedFrame> MapSyntheticSession(const std::string& feature_type) {
-  GeneratorConfig config;
+  GeneratorConfig config;  // the box apartment without motion blur
+  ApplyGeneratorModel("boxes-2026-12-02", &config);
+  config.camera.motion_blur_scale = 0.0;
   config.camera.width = 320;
   config.camera.height = 240;
   config.camera.fx = config.camera.fy = 262.5;  // the 640x480 field of view

@@ -9,6 +9,7 @@
 
 #include "slam/core/check.h"
 #include "slam/core/json_fields.h"
+#include "slam/synthetic/generator_config_json.h"
 #include "tests/testing/temp_dir.h"
 
 namespace duskmap {
@@ -112,12 +113,13 @@ TEST(ReadGeneratorConfig, InconsistentValuesAreRejected) {
 // overrides are one on their own) loads.
 TEST(ReadGeneratorConfig, EveryShippedGeneratorConfigLoads) {
   const std::string configs = std::string(DUSKMAP_SOURCE_DIR) + "/configs/";
-  // Every piece the default (furnished) config lists is read.
+  // The default (furnished) config has the default model's 38 pieces.
   const std::string furnished = configs + "sunset_apartment.json";
-  const size_t listed = ReadJsonFile(furnished)["scene"]["furniture"]["pieces"].size();
-  EXPECT_GE(listed, 15u);
-  EXPECT_EQ(ReadGeneratorConfig(furnished).scene.furniture.pieces.size(), listed);
-  EXPECT_TRUE(ReadGeneratorConfig(configs + "sunset_apartment_boxes.json").scene.box_furniture);
+  EXPECT_EQ(ReadGeneratorConfig(furnished).scene.furniture.pieces.size(), 38u);
+  const GeneratorConfig boxes = ReadGeneratorConfig(configs + "sunset_apartment_boxes.json");
+  EXPECT_EQ(boxes.model, "boxes-2026-12-02");
+  EXPECT_TRUE(boxes.scene.box_furniture);
+  EXPECT_TRUE(boxes.scene.furniture.pieces.empty());
   const GeneratorConfig quick = ReadGeneratorConfig(configs + "quick/dataset_overrides.json");
   EXPECT_EQ(quick.camera.width, 480);
   EXPECT_EQ(quick.route.frame_rate_hz, 0.5);
@@ -136,6 +138,78 @@ TEST(ReadGeneratorConfig, ErrorsNameTheListItemAndTheDerivedSeed) {
   const std::string position = WriteConfig(
       "position", R"({"scene": {"furniture": {"pieces": [{"model": "m", "room": "kitchen", "position_m": [1]}]}}})");
   EXPECT_EQ(ErrorOf(position), position + ".scene.furniture.pieces[0].position_m: expected 2 numbers, got 1");
+}
+
+// The code's defaults are the default dataset: a config that sets nothing
+// but max_frames reads as configs/sunset_apartment.json with that max_frames,
+// and as GeneratorConfig's defaults.
+TEST(ReadGeneratorConfig, AConfigWithOnlyMaxFramesIsTheCalibratedDefault) {
+  const GeneratorConfig only = ReadGeneratorConfig(WriteConfig("only_frames", R"({"max_frames": 3})"));
+  GeneratorConfig shipped = ReadGeneratorConfig(std::string(DUSKMAP_SOURCE_DIR) + "/configs/sunset_apartment.json");
+  shipped.max_frames = 3;
+  GeneratorConfig code;
+  code.max_frames = 3;
+  EXPECT_EQ(ToJsonObject(only), ToJsonObject(shipped));
+  EXPECT_EQ(ToJsonObject(only), ToJsonObject(code));
+  EXPECT_EQ(only.model, kDefaultGeneratorModel);
+  // The calibrated values (calibration runs 10-23), not the building blocks' own defaults.
+  EXPECT_FALSE(only.scene.box_furniture);
+  EXPECT_EQ(only.scene.furniture.pieces.size(), 38u);
+  EXPECT_EQ(only.lighting.glass_transmission, 0.35);
+  EXPECT_EQ(only.lighting.horizon_elevation_deg, 14.0);
+  EXPECT_EQ(only.camera.tone_contrast, 0.5);
+  EXPECT_NE(ToJsonObject(only.lighting), ToJsonObject(LightingOptions()));
+}
+
+// Each model is selected by name, sets every value a model decides whatever
+// came before (the same values from any starting model), and takes the
+// config's other keys over its own.
+TEST(GeneratorModels, EachModelIsSelectableAndSetsEveryValueItDecides) {
+  const std::vector<std::string> names = GeneratorModelNames();
+  ASSERT_EQ(names.size(), 6u);
+  EXPECT_EQ(names.front(), "boxes-2026-12-02");
+  EXPECT_EQ(names.back(), kDefaultGeneratorModel);
+  for (const std::string& name : names) {
+    const GeneratorConfig read = ReadGeneratorConfig(WriteConfig("model", R"({"model": ")" + name + R"("})"));
+    EXPECT_EQ(read.model, name);
+    for (const std::string& before : names) {
+      GeneratorConfig config;
+      ApplyGeneratorModel(before, &config);
+      ApplyGeneratorModel(name, &config);
+      EXPECT_EQ(ToJsonObject(config), ToJsonObject(read)) << name << " after " << before;
+    }
+  }
+  const auto model = [](const std::string& name) {
+    GeneratorConfig config;
+    ApplyGeneratorModel(name, &config);
+    return config;
+  };
+  // What each step of the calibration log added.
+  EXPECT_TRUE(model("boxes-2026-12-02").scene.box_furniture);
+  EXPECT_EQ(model("boxes-2026-12-02").camera.motion_blur_scale, 1.0);
+  EXPECT_EQ(model("run10-2026-12-05").scene.lamp_intensity_scale, 3.2);
+  EXPECT_FALSE(model("run10-2026-12-05").lighting.window_view_obstructed);
+  EXPECT_TRUE(model("run14-2026-12-06").lighting.window_view_obstructed);
+  EXPECT_EQ(model("run14-2026-12-06").lighting.glass_transmission, 0.75);
+  EXPECT_EQ(model("run17-2026-12-06").lighting.glass_transmission, 0.35);
+  EXPECT_FALSE(model("run17-2026-12-06").lighting.sun_per_texel);
+  EXPECT_TRUE(model("run22-2026-12-06").lighting.sun_per_texel);
+  EXPECT_FALSE(model("run22-2026-12-06").lighting.mesh_sun_per_sample);
+  EXPECT_TRUE(model("run23-2026-12-06").lighting.mesh_sun_per_sample);
+  const GeneratorConfig over = ReadGeneratorConfig(
+      WriteConfig("over", R"({"model": "boxes-2026-12-02", "lighting": {"glass_transmission": 0.5}})"));
+  EXPECT_TRUE(over.scene.box_furniture);
+  EXPECT_EQ(over.lighting.glass_transmission, 0.5);
+}
+
+TEST(ReadGeneratorConfig, AnUnknownModelIsRefusedNamingTheKey) {
+  const std::string path = WriteConfig("bad_model", R"({"model": "run99"})");
+  const std::string error = ErrorOf(path);
+  EXPECT_EQ(error.find(path + ".model: unknown model 'run99' (known: boxes-2026-12-02, "), 0u) << error;
+  EXPECT_NE(ErrorOf(WriteConfig("model_type", R"({"model": 23})")).find(".model: wrong type"), std::string::npos);
+  GeneratorConfig config;
+  config.model = "run99";
+  EXPECT_THROW(config.Check(), ConfigError);
 }
 
 TEST(ReadGeneratorConfig, MissingFileNamesIt) {

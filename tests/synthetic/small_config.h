@@ -1,5 +1,6 @@
-// A small, fast generator configuration for tests: 160x120 images, a few
-// frames per session, coarse light maps.
+// A small, fast generator configuration for tests: the box apartment
+// (boxes-2026-12-02) without motion blur, 160x120 images, a few frames per
+// session, coarse light maps.
 #pragma once
 
 #include "slam/synthetic/generator_config.h"
@@ -8,6 +9,8 @@ namespace duskmap::testing {
 
 inline GeneratorConfig SmallConfig(int max_frames = 3) {
   GeneratorConfig config;
+  ApplyGeneratorModel("boxes-2026-12-02", &config);
+  config.camera.motion_blur_scale = 0.0;
   config.camera.width = 160;
   config.camera.height = 120;
   config.camera.fx = config.camera.fy = 131.25;
