@@ -523,138 +523,238 @@ MeshSun MeshSunOf(const Scene& scene, const SessionLighting& lighting, const Roo
   return sun;
 }
 
-}  // namespace
+// Each room's shadowing, built when a receiver first needs it.
+class RoomShadowings {
+ public:
+  explicit RoomShadowings(const Scene& scene) : scene_(scene) {}
 
-SessionRadiance PrepareSessionRadiance(const Scene& scene, const SessionLighting& lighting,
-                                       const LightingOptions& options) {
-  // Each room's shadowing, built when a receiver first needs it.
-  std::map<int, RoomShadowing> rooms;
-  const auto shadowing = [&](int room) -> const RoomShadowing& {
-    auto it = rooms.find(room);
-    if (it == rooms.end()) it = rooms.emplace(room, ShadowingOfRoom(scene, room)).first;
+  const RoomShadowing& operator()(int room) {
+    auto it = rooms_.find(room);
+    if (it == rooms_.end()) it = rooms_.emplace(room, ShadowingOfRoom(scene_, room)).first;
     return it->second;
-  };
+  }
+
+ private:
+  const Scene& scene_;
+  std::map<int, RoomShadowing> rooms_;
+};
+
+// Stage 1: the light map of every quad but the windows; without the sun
+// when the sun is drawn per texel (stage 2).
+std::vector<LightMap> QuadLightMaps(const Scene& scene, const SessionLighting& lighting, RoomShadowings& rooms,
+                                    double texel_m, bool include_sun) {
   std::vector<LightMap> maps(scene.quads.size());
   for (size_t i = 0; i < scene.quads.size(); ++i) {
     const Quad& q = scene.quads[i];
     if (q.emission == Emission::kSky) continue;
-    maps[i] = ComputeLightMap(scene, lighting, shadowing(q.room), static_cast<int>(i), options.light_texel_m,
-                              !options.sun_per_texel);
+    maps[i] = ComputeLightMap(scene, lighting, rooms(q.room), static_cast<int>(i), texel_m, include_sun);
   }
-  // With sun_per_texel, the sun's visibility per texel of each quad it can
-  // reach, and its mean irradiance for the ambient term.
-  std::vector<cv::Mat> sun_visibility;
-  std::vector<cv::Vec3f> sun_mean;
-  if (options.sun_per_texel) {
-    sun_visibility.resize(scene.quads.size());
-    sun_mean.assign(scene.quads.size(), cv::Vec3f(0, 0, 0));
-    const Eigen::Vector3d& to_sun = lighting.sun_direction_in_world;
-    for (size_t i = 0; i < scene.quads.size(); ++i) {
-      const Quad& q = scene.quads[i];
-      const double cos_sun = q.normal().dot(to_sun);
-      if (q.emission == Emission::kSky || lighting.sun_normal_lux_bgr[1] <= 0.0f || cos_sun <= 0.0) continue;
-      const RoomShadowing& room = shadowing(q.room);
-      if (room.windows.empty()) continue;
-      const Eigen::Vector3d offset = 1e-3 * q.normal();
-      const int receiver = static_cast<int>(i);
-      const auto reaches = [&](const Eigen::Vector3d& point, const Eigen::Vector3d& direction) {
-        return SunReachesPoint(scene, room, point + offset, direction, receiver);
-      };
-      sun_visibility[i] = SunVisibility(q, q.albedo.size(), to_sun, reaches);
-      sun_mean[i] = Scale(lighting.sun_normal_lux_bgr, cos_sun * cv::mean(sun_visibility[i])[0]);
-    }
-  }
-  const std::vector<cv::Vec3f> ambient = AmbientPerRoom(scene, maps, sun_mean, options);
-  SessionRadiance session;
-  const bool pane_mask = options.window_view_in_camera && lighting.window_view_obstructed;
-  if (pane_mask) {
-    WindowViewRadiance& view = session.window_view;
-    view.enabled = true;
-    view.tan_facade_top = std::tan(lighting.facade_top_elevation_deg * kPi / 180.0);
-    view.sky_nits_bgr = lighting.sky_nits_bgr;
-    view.ground_nits_bgr = lighting.ground_nits_bgr;
-    view.facade_nits_bgr.resize(scene.quads.size(), cv::Vec3f(0, 0, 0));
-    view.obstructed.resize(scene.quads.size(), false);
-    for (size_t i = 0; i < scene.quads.size(); ++i) {
-      if (scene.quads[i].emission != Emission::kSky) continue;
-      view.facade_nits_bgr[i] = FacadeNits(scene.quads[i], lighting);
-      view.obstructed[i] = ViewObstructed(scene.quads[i], lighting);
-    }
-  }
-  std::vector<cv::Mat> radiance(scene.quads.size());
-  const float inv_pi = static_cast<float>(1.0 / kPi);
+  return maps;
+}
+
+// LightingOptions::sun_per_texel: the sun's visibility per texel of each quad
+// it can reach (empty elsewhere), and its mean irradiance there for the
+// ambient term. Both lists are empty when the sun is in the light maps.
+struct QuadSunTexels {
+  std::vector<cv::Mat> visibility;
+  std::vector<cv::Vec3f> mean_lux;
+};
+
+// Stage 2 (with sun_per_texel).
+QuadSunTexels SunPerTexel(const Scene& scene, const SessionLighting& lighting, RoomShadowings& rooms) {
+  QuadSunTexels sun;
+  sun.visibility.resize(scene.quads.size());
+  sun.mean_lux.assign(scene.quads.size(), cv::Vec3f(0, 0, 0));
+  const Eigen::Vector3d& to_sun = lighting.sun_direction_in_world;
   for (size_t i = 0; i < scene.quads.size(); ++i) {
     const Quad& q = scene.quads[i];
-    cv::Mat out(q.albedo.size(), CV_32FC3);
-    const bool glowing = q.emission == Emission::kLamp && lighting.lamp_on[q.lamp];
-    const bool relief = !maps[i].vector_uvn.empty();
-    // The sun per texel: its irradiance on the quad and its irradiance
-    // vector in the quad's frame, times each texel's visibility.
-    const bool texel_sun = !sun_visibility.empty() && !sun_visibility[i].empty();
-    cv::Vec3f sun_lux(0, 0, 0), sun_vector_uvn(0, 0, 0);
-    if (texel_sun) {
-      const Eigen::Vector3d& d = lighting.sun_direction_in_world;
-      sun_lux = Scale(lighting.sun_normal_lux_bgr, q.normal().dot(d));
-      const double luminance = Luminance(lighting.sun_normal_lux_bgr);
-      sun_vector_uvn = cv::Vec3f(static_cast<float>(luminance * d.dot(q.u_axis)),
-                                 static_cast<float>(luminance * d.dot(q.v_axis)),
-                                 static_cast<float>(luminance * d.dot(q.normal())));
-    }
-    for (int r = 0; r < out.rows; ++r) {
-      const cv::Vec3f* a = q.albedo.ptr<cv::Vec3f>(r);
-      const cv::Vec2f* slope = relief ? q.relief_slope.ptr<cv::Vec2f>(r) : nullptr;
-      const float* sun = texel_sun ? sun_visibility[i].ptr<float>(r) : nullptr;
-      cv::Vec3f* o = out.ptr<cv::Vec3f>(r);
-      const double fv = (r + 0.5) / out.rows;
-      for (int c = 0; c < out.cols; ++c) {
-        if (q.emission == Emission::kSky) {
-          o[c] = pane_mask ? (Luminance(a[c]) < kMullionLuminance ? a[c] : cv::Vec3f(1, 1, 1))
-                           : a[c].mul(lighting.sky_nits_bgr);
-        } else if (glowing) {
-          o[c] = a[c].mul(lighting.lamp_color_bgr) *
-                 static_cast<float>(scene.lamps[q.lamp].intensity_cd * options.lamp_shade_nits_per_cd);
-        } else {
-          const double fu = (c + 0.5) / out.cols;
-          cv::Vec3f direct = SampleNodes(maps[i], maps[i].lux, fu, fv);
-          if (sun != nullptr) direct += sun_lux * sun[c];
-          if (relief) {
-            cv::Vec3f vector_uvn = SampleNodes(maps[i], maps[i].vector_uvn, fu, fv);
-            if (sun != nullptr) vector_uvn += sun_vector_uvn * sun[c];
-            direct *= ReliefFactor(vector_uvn, slope[c]);
-          }
-          o[c] = a[c].mul(direct + ambient[q.room]) * inv_pi;
-        }
-      }
-    }
-    radiance[i] = out;
+    const double cos_sun = q.normal().dot(to_sun);
+    if (q.emission == Emission::kSky || lighting.sun_normal_lux_bgr[1] <= 0.0f || cos_sun <= 0.0) continue;
+    const RoomShadowing& room = rooms(q.room);
+    if (room.windows.empty()) continue;
+    const Eigen::Vector3d offset = 1e-3 * q.normal();
+    const int receiver = static_cast<int>(i);
+    const auto reaches = [&](const Eigen::Vector3d& point, const Eigen::Vector3d& direction) {
+      return SunReachesPoint(scene, room, point + offset, direction, receiver);
+    };
+    sun.visibility[i] = SunVisibility(q, q.albedo.size(), to_sun, reaches);
+    sun.mean_lux[i] = Scale(lighting.sun_normal_lux_bgr, cos_sun * cv::mean(sun.visibility[i])[0]);
   }
-  session.quads = std::move(radiance);
-  // Meshes, per vertex: the direct light at the vertex (1 mm off its surface
-  // along its normal, so that its own triangles do not shadow it) with the
-  // room's ambient term.
-  session.mesh_vertex_light.resize(scene.meshes.size());
-  if (options.mesh_sun_per_sample) session.mesh_sun.resize(scene.meshes.size());
+  return sun;
+}
+
+// Stage 4 (with window_view_in_camera): what the camera sees through each
+// window, by direction.
+WindowViewRadiance WindowViewOf(const Scene& scene, const SessionLighting& lighting) {
+  WindowViewRadiance view;
+  view.enabled = true;
+  view.tan_facade_top = std::tan(lighting.facade_top_elevation_deg * kPi / 180.0);
+  view.sky_nits_bgr = lighting.sky_nits_bgr;
+  view.ground_nits_bgr = lighting.ground_nits_bgr;
+  view.facade_nits_bgr.resize(scene.quads.size(), cv::Vec3f(0, 0, 0));
+  view.obstructed.resize(scene.quads.size(), false);
+  for (size_t i = 0; i < scene.quads.size(); ++i) {
+    if (scene.quads[i].emission != Emission::kSky) continue;
+    view.facade_nits_bgr[i] = FacadeNits(scene.quads[i], lighting);
+    view.obstructed[i] = ViewObstructed(scene.quads[i], lighting);
+  }
+  return view;
+}
+
+// A window's texture: the sky's radiance through it, or with `pane_mask` 1
+// for glass and the albedo of its frame and mullions (the renderer multiplies
+// it by what each pixel's ray sees outside).
+cv::Mat WindowTexture(const Quad& q, const SessionLighting& lighting, bool pane_mask) {
+  cv::Mat out(q.albedo.size(), CV_32FC3);
+  for (int r = 0; r < out.rows; ++r) {
+    const cv::Vec3f* a = q.albedo.ptr<cv::Vec3f>(r);
+    cv::Vec3f* o = out.ptr<cv::Vec3f>(r);
+    for (int c = 0; c < out.cols; ++c) {
+      o[c] = pane_mask ? (Luminance(a[c]) < kMullionLuminance ? a[c] : cv::Vec3f(1, 1, 1))
+                       : a[c].mul(lighting.sky_nits_bgr);
+    }
+  }
+  return out;
+}
+
+// A lit lamp shade's glow: its albedo in the lamps' colour, times its lamp's
+// candela and the shade's nits per candela.
+cv::Mat GlowTexture(const Quad& q, const cv::Vec3f& lamp_color_bgr, double intensity_cd, double nits_per_cd) {
+  cv::Mat out(q.albedo.size(), CV_32FC3);
+  for (int r = 0; r < out.rows; ++r) {
+    const cv::Vec3f* a = q.albedo.ptr<cv::Vec3f>(r);
+    cv::Vec3f* o = out.ptr<cv::Vec3f>(r);
+    for (int c = 0; c < out.cols; ++c) o[c] = a[c].mul(lamp_color_bgr) * static_cast<float>(intensity_cd * nits_per_cd);
+  }
+  return out;
+}
+
+// The sun drawn per texel on one quad: its irradiance there and its
+// irradiance vector in the quad's frame, before each texel's visibility.
+struct TexelSun {
+  cv::Vec3f lux = cv::Vec3f(0, 0, 0);
+  cv::Vec3f vector_uvn = cv::Vec3f(0, 0, 0);
+};
+
+TexelSun TexelSunOn(const Quad& q, const SessionLighting& lighting) {
+  const Eigen::Vector3d& d = lighting.sun_direction_in_world;
+  TexelSun sun;
+  sun.lux = Scale(lighting.sun_normal_lux_bgr, q.normal().dot(d));
+  const double luminance = Luminance(lighting.sun_normal_lux_bgr);
+  sun.vector_uvn = cv::Vec3f(static_cast<float>(luminance * d.dot(q.u_axis)),
+                             static_cast<float>(luminance * d.dot(q.v_axis)),
+                             static_cast<float>(luminance * d.dot(q.normal())));
+  return sun;
+}
+
+// A diffuse quad's radiance: albedo x (its light map's direct light, plus
+// the sun per texel where `sun_visibility` is not empty, tilted by the
+// relief, + the room's ambient) / pi.
+cv::Mat LitTexture(const Quad& q, const SessionLighting& lighting, const LightMap& map,
+                   const cv::Mat& sun_visibility, const cv::Vec3f& ambient) {
+  cv::Mat out(q.albedo.size(), CV_32FC3);
+  const float inv_pi = static_cast<float>(1.0 / kPi);
+  const bool relief = !map.vector_uvn.empty();
+  const bool texel_sun = !sun_visibility.empty();
+  const TexelSun sun_on_quad = texel_sun ? TexelSunOn(q, lighting) : TexelSun();
+  for (int r = 0; r < out.rows; ++r) {
+    const cv::Vec3f* a = q.albedo.ptr<cv::Vec3f>(r);
+    const cv::Vec2f* slope = relief ? q.relief_slope.ptr<cv::Vec2f>(r) : nullptr;
+    const float* sun = texel_sun ? sun_visibility.ptr<float>(r) : nullptr;
+    cv::Vec3f* o = out.ptr<cv::Vec3f>(r);
+    const double fv = (r + 0.5) / out.rows;
+    for (int c = 0; c < out.cols; ++c) {
+      const double fu = (c + 0.5) / out.cols;
+      cv::Vec3f direct = SampleNodes(map, map.lux, fu, fv);
+      if (sun != nullptr) direct += sun_on_quad.lux * sun[c];
+      if (relief) {
+        cv::Vec3f vector_uvn = SampleNodes(map, map.vector_uvn, fu, fv);
+        if (sun != nullptr) vector_uvn += sun_on_quad.vector_uvn * sun[c];
+        direct *= ReliefFactor(vector_uvn, slope[c]);
+      }
+      o[c] = a[c].mul(direct + ambient) * inv_pi;
+    }
+  }
+  return out;
+}
+
+// Stage 5: every quad's radiance texture.
+std::vector<cv::Mat> QuadTextures(const Scene& scene, const SessionLighting& lighting, const LightingOptions& options,
+                                  const std::vector<LightMap>& maps, const QuadSunTexels& sun,
+                                  const std::vector<cv::Vec3f>& ambient, bool pane_mask) {
+  std::vector<cv::Mat> radiance(scene.quads.size());
+  for (size_t i = 0; i < scene.quads.size(); ++i) {
+    const Quad& q = scene.quads[i];
+    if (q.emission == Emission::kSky) {
+      radiance[i] = WindowTexture(q, lighting, pane_mask);
+    } else if (q.emission == Emission::kLamp && lighting.lamp_on[q.lamp]) {
+      radiance[i] = GlowTexture(q, lighting.lamp_color_bgr, scene.lamps[q.lamp].intensity_cd,
+                                options.lamp_shade_nits_per_cd);
+    } else {
+      const cv::Mat no_sun;
+      radiance[i] = LitTexture(q, lighting, maps[i], sun.visibility.empty() ? no_sun : sun.visibility[i],
+                               ambient[q.room]);
+    }
+  }
+  return radiance;
+}
+
+// A mesh's light per vertex: (the direct light 1 mm off its surface along
+// its normal, so that its own triangles do not shadow it, + the room's
+// ambient) / pi; with `sun_visible`, whether each vertex's light includes
+// the sun.
+std::vector<cv::Vec3f> MeshVertexLight(const Scene& scene, const SessionLighting& lighting, const RoomShadowing& room,
+                                       const SceneMesh& mesh, const cv::Vec3f& room_ambient,
+                                       std::vector<uint8_t>* sun_visible) {
+  const float inv_pi = static_cast<float>(1.0 / kPi);
+  std::vector<cv::Vec3f> light(mesh.positions_in_world.size());
+  if (sun_visible != nullptr) sun_visible->assign(light.size(), 0);
+  for (size_t v = 0; v < light.size(); ++v) {
+    const Eigen::Vector3d n = mesh.normals_in_world[v].cast<double>();
+    const Eigen::Vector3d p = mesh.positions_in_world[v].cast<double>() + 1e-3 * n;
+    const IrradianceParts parts = DirectIrradiance(scene, lighting, room, p, n, -1);
+    light[v] = (parts.total() + room_ambient) * inv_pi;
+    if (sun_visible != nullptr) (*sun_visible)[v] = Luminance(parts.sun) > 0.0f ? 1 : 0;
+  }
+  return light;
+}
+
+// Stage 6: the meshes' vertex light, and with mesh_sun_per_sample the sun
+// per pixel over the triangles a patch's edge crosses.
+void LightMeshes(const Scene& scene, const SessionLighting& lighting, const LightingOptions& options,
+                 RoomShadowings& rooms, const std::vector<cv::Vec3f>& ambient, SessionRadiance* session) {
+  session->mesh_vertex_light.resize(scene.meshes.size());
+  if (options.mesh_sun_per_sample) session->mesh_sun.resize(scene.meshes.size());
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const SceneMesh& mesh = scene.meshes[m];
-    const RoomShadowing& room = shadowing(mesh.room);
+    const RoomShadowing& room = rooms(mesh.room);
     const bool known_room = mesh.room >= 0 && mesh.room < static_cast<int>(scene.room_names.size());
     const cv::Vec3f room_ambient = known_room ? ambient[static_cast<size_t>(mesh.room)] : cv::Vec3f(0, 0, 0);
-    std::vector<cv::Vec3f>& light = session.mesh_vertex_light[m];
-    light.resize(mesh.positions_in_world.size());
-    // With mesh_sun_per_sample: whether each vertex's light includes the sun.
-    std::vector<uint8_t> sun_visible(options.mesh_sun_per_sample ? light.size() : 0, 0);
-    for (size_t v = 0; v < light.size(); ++v) {
-      const Eigen::Vector3d n = mesh.normals_in_world[v].cast<double>();
-      const Eigen::Vector3d p = mesh.positions_in_world[v].cast<double>() + 1e-3 * n;
-      const IrradianceParts parts = DirectIrradiance(scene, lighting, room, p, n, -1);
-      light[v] = (parts.total() + room_ambient) * inv_pi;
-      if (!sun_visible.empty()) sun_visible[v] = Luminance(parts.sun) > 0.0f ? 1 : 0;
-    }
+    std::vector<uint8_t> sun_visible;
+    session->mesh_vertex_light[m] = MeshVertexLight(scene, lighting, room, mesh, room_ambient,
+                                                    options.mesh_sun_per_sample ? &sun_visible : nullptr);
     if (options.mesh_sun_per_sample) {
-      session.mesh_sun[m] =
-          MeshSunOf(scene, lighting, room, mesh, std::move(sun_visible), options.mesh_sun_sample_m);
+      session->mesh_sun[m] = MeshSunOf(scene, lighting, room, mesh, std::move(sun_visible), options.mesh_sun_sample_m);
     }
   }
+}
+
+}  // namespace
+
+// The stages in order; each model choice (LightingOptions::sun_per_texel,
+// window_view_in_camera, mesh_sun_per_sample) is decided here, once.
+SessionRadiance PrepareSessionRadiance(const Scene& scene, const SessionLighting& lighting,
+                                       const LightingOptions& options) {
+  RoomShadowings rooms(scene);
+  const std::vector<LightMap> maps =
+      QuadLightMaps(scene, lighting, rooms, options.light_texel_m, /*include_sun=*/!options.sun_per_texel);
+  const QuadSunTexels sun = options.sun_per_texel ? SunPerTexel(scene, lighting, rooms) : QuadSunTexels();
+  const std::vector<cv::Vec3f> ambient = AmbientPerRoom(scene, maps, sun.mean_lux, options);  // stage 3
+  SessionRadiance session;
+  const bool pane_mask = options.window_view_in_camera && lighting.window_view_obstructed;
+  if (pane_mask) session.window_view = WindowViewOf(scene, lighting);
+  session.quads = QuadTextures(scene, lighting, options, maps, sun, ambient, pane_mask);
+  LightMeshes(scene, lighting, options, rooms, ambient, &session);
   return session;
 }
 

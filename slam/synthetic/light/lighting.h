@@ -150,9 +150,15 @@ struct SessionRadiance {
   std::vector<MeshSun> mesh_sun;
 };
 
-// Lighting preparation of a session: quads and meshes. Meshes cast shadows
-// on quads and on each other; they are left out of the ambient term (the
-// room's mean over its quads).
+// Lighting preparation of a session: quads and meshes, in stages: (1) the
+// quads' light maps (direct light at nodes every light_texel_m, the sun
+// included unless sun_per_texel), (2) with sun_per_texel the sun's
+// visibility per texel, (3) each room's ambient term, (4) with
+// window_view_in_camera the windows' view, (5) the quads' radiance textures,
+// (6) the meshes' vertex light (with mesh_sun_per_sample, the sun per pixel
+// where a patch's edge crosses a triangle). Meshes cast shadows on quads and
+// on each other; they are left out of the ambient term (the room's mean over
+// its quads).
 SessionRadiance PrepareSessionRadiance(const Scene& scene, const SessionLighting& lighting,
                                        const LightingOptions& options);
 
