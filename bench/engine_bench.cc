@@ -51,7 +51,7 @@ std::string DatasetPath() {
   if (!std::filesystem::exists(path)) {
     GeneratorConfig config;  // the box apartment without motion blur
     ApplyGeneratorModel("boxes-2026-12-02", &config);
-    config.camera.motion_blur_scale = 0.0;
+    config.camera.exposure.motion_blur_scale = 0.0;
     config.max_frames = BenchFrames();
     config.sessions = {{"1", "16:46", "mapping"}, {"2", "17:27", "mapping"},
                        {"3", "17:54", "mapping"}, {"4", "18:27", "mapping"},

@@ -40,8 +40,46 @@ void GeneratorConfig::Check() const {
   }
 }
 
+std::vector<std::pair<std::string, std::string>> MovedGeneratorKeys() {
+  return {{"camera.ae_target", "camera.exposure.target"},
+          {"camera.ae_speed", "camera.exposure.speed"},
+          {"camera.min_exposure_s", "camera.exposure.min_time_s"},
+          {"camera.max_exposure_s", "camera.exposure.max_time_s"},
+          {"camera.max_gain", "camera.exposure.max_gain"},
+          {"camera.sensitivity", "camera.exposure.sensitivity"},
+          {"camera.motion_blur_scale", "camera.exposure.motion_blur_scale"},
+          {"camera.awb_speed", "camera.white_balance.speed"},
+          {"camera.awb_strength", "camera.white_balance.strength"},
+          {"camera.photons_at_white", "camera.noise.photons_at_white"},
+          {"camera.read_noise", "camera.noise.read_noise"},
+          {"camera.gamma", "camera.image_processor.gamma"},
+          {"camera.tone_contrast", "camera.image_processor.tone_contrast"},
+          {"camera.noise_reduction", "camera.image_processor.noise_reduction"},
+          {"camera.noise_reduction_sigma_px", "camera.image_processor.noise_reduction_sigma_px"},
+          {"camera.sharpen_amount", "camera.image_processor.sharpen_amount"},
+          {"camera.sharpen_sigma_px", "camera.image_processor.sharpen_sigma_px"},
+          {"camera.sharpen_threshold_levels", "camera.image_processor.sharpen_threshold_levels"}};
+}
+
+namespace {
+
+// A moved key (MovedGeneratorKeys: "object.key") in the file is refused with
+// its new path.
+void RejectMovedKeys(const nlohmann::json& json, const std::string& path) {
+  if (!json.is_object()) return;
+  for (const auto& [old_path, new_path] : MovedGeneratorKeys()) {
+    const size_t dot = old_path.find('.');
+    const auto object = json.find(old_path.substr(0, dot));
+    if (object == json.end() || !object->is_object() || !object->contains(old_path.substr(dot + 1))) continue;
+    SLAM_THROW(ConfigError) << path << "." << old_path << ": moved to " << new_path;
+  }
+}
+
+}  // namespace
+
 GeneratorConfig ReadGeneratorConfig(const std::string& path) {
   const nlohmann::json json = ReadJsonFile(path);
+  RejectMovedKeys(json, path);
   JsonFields fields(json, path);
   std::string model = kDefaultGeneratorModel;
   fields.Read("model", &model);

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "slam/synthetic/generator_models.h"
@@ -48,6 +49,11 @@ struct GeneratorConfig {
   static std::vector<SessionSpec> DefaultSessions();
   void Check() const;
 };
+
+// The config keys that moved (issue 45: the camera's flat keys into its
+// stages), old dotted path -> new one. A file that still has one is refused
+// with its new key: "<path>.camera.ae_target: moved to camera.exposure.target".
+std::vector<std::pair<std::string, std::string>> MovedGeneratorKeys();
 
 // Reads a config file: its "model" (absent: the default model), then every
 // other key over that model's values. Throws ConfigError "<path>.<key>: <problem>".

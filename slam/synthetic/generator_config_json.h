@@ -101,6 +101,55 @@ struct JsonCodec<LightingOptions> {
 };
 
 template <>
+struct JsonCodec<CameraExposureOptions> {
+  template <typename F, typename O>
+  static void Visit(F& f, O& o) {
+    f("target", o.target);
+    f("speed", o.speed);
+    f("min_time_s", o.min_time_s);
+    f("max_time_s", o.max_time_s);
+    f("max_gain", o.max_gain);
+    f("sensitivity", o.sensitivity);
+    f("motion_blur_scale", o.motion_blur_scale);
+  }
+};
+
+template <>
+struct JsonCodec<WhiteBalanceOptions> {
+  template <typename F, typename O>
+  static void Visit(F& f, O& o) {
+    f("speed", o.speed);
+    f("strength", o.strength);
+  }
+};
+
+template <>
+struct JsonCodec<CameraNoiseOptions> {
+  template <typename F, typename O>
+  static void Visit(F& f, O& o) {
+    f("photons_at_white", o.photons_at_white);
+    f("read_noise", o.read_noise);
+  }
+};
+
+template <>
+struct JsonCodec<ImageProcessorOptions> {
+  template <typename F, typename O>
+  static void Visit(F& f, O& o) {
+    f("gamma", o.gamma);
+    f("tone_contrast", o.tone_contrast);
+    f("noise_reduction", o.noise_reduction);
+    f("noise_reduction_sigma_px", o.noise_reduction_sigma_px);
+    f("sharpen_amount", o.sharpen_amount);
+    f("sharpen_sigma_px", o.sharpen_sigma_px);
+    f("sharpen_threshold_levels", o.sharpen_threshold_levels);
+  }
+};
+
+// "camera": {"width": 640, "height": 480, "fx": 525, "fy": 525, "blur_sigma_px": 0.6,
+//            "exposure": {...}, "white_balance": {...}, "noise": {...}, "image_processor": {...}}
+// (the flat keys before issue 45 are refused with their new key: kMovedGeneratorKeys).
+template <>
 struct JsonCodec<CameraModelOptions> {
   template <typename F, typename O>
   static void Visit(F& f, O& o) {
@@ -108,25 +157,11 @@ struct JsonCodec<CameraModelOptions> {
     f("height", o.height);
     f("fx", o.fx);
     f("fy", o.fy);
-    f("ae_target", o.ae_target);
-    f("ae_speed", o.ae_speed);
-    f("min_exposure_s", o.min_exposure_s);
-    f("max_exposure_s", o.max_exposure_s);
-    f("max_gain", o.max_gain);
-    f("sensitivity", o.sensitivity);
-    f("awb_speed", o.awb_speed);
-    f("awb_strength", o.awb_strength);
-    f("photons_at_white", o.photons_at_white);
-    f("read_noise", o.read_noise);
     f("blur_sigma_px", o.blur_sigma_px);
-    f("gamma", o.gamma);
-    f("tone_contrast", o.tone_contrast);
-    f("motion_blur_scale", o.motion_blur_scale);
-    f("sharpen_amount", o.sharpen_amount);
-    f("sharpen_sigma_px", o.sharpen_sigma_px);
-    f("sharpen_threshold_levels", o.sharpen_threshold_levels);
-    f("noise_reduction", o.noise_reduction);
-    f("noise_reduction_sigma_px", o.noise_reduction_sigma_px);
+    f("exposure", o.exposure);
+    f("white_balance", o.white_balance);
+    f("noise", o.noise);
+    f("image_processor", o.image_processor);
   }
 };
 

@@ -23,12 +23,12 @@ void Boxes20261202(GeneratorConfig* c) {
   c->lighting.glass_transmission = 0.75;
   c->lighting.sun_per_texel = false;
   c->lighting.mesh_sun_per_sample = false;
-  c->camera.motion_blur_scale = 1.0;
-  c->camera.tone_contrast = 0.12;
-  c->camera.noise_reduction = 0.0;
-  c->camera.sharpen_amount = 0.0;
-  c->camera.sharpen_sigma_px = 1.0;
-  c->camera.sharpen_threshold_levels = 0.0;
+  c->camera.exposure.motion_blur_scale = 1.0;
+  c->camera.image_processor.tone_contrast = 0.12;
+  c->camera.image_processor.noise_reduction = 0.0;
+  c->camera.image_processor.sharpen_amount = 0.0;
+  c->camera.image_processor.sharpen_sigma_px = 1.0;
+  c->camera.image_processor.sharpen_threshold_levels = 0.0;
 }
 
 // Calibration run 10: the catalog furniture in place of the boxes, lamps
@@ -41,7 +41,7 @@ void Run10(GeneratorConfig* c) {
   c->scene.lamp_intensity_scale = 3.2;
   c->lighting.horizon_elevation_deg = 14.0;
   c->lighting.ambient_fraction = 0.8;
-  c->camera.tone_contrast = 0.5;
+  c->camera.image_processor.tone_contrast = 0.5;
 }
 
 // Run 14: the windows see the facades opposite and the ground.
@@ -61,10 +61,10 @@ void Run17(GeneratorConfig* c) {
 void Run22(GeneratorConfig* c) {
   Run17(c);
   c->lighting.sun_per_texel = true;
-  c->camera.noise_reduction = 1.5;
-  c->camera.sharpen_amount = 0.5;
-  c->camera.sharpen_sigma_px = 5.0;
-  c->camera.sharpen_threshold_levels = 2.0;
+  c->camera.image_processor.noise_reduction = 1.5;
+  c->camera.image_processor.sharpen_amount = 0.5;
+  c->camera.image_processor.sharpen_sigma_px = 5.0;
+  c->camera.image_processor.sharpen_threshold_levels = 2.0;
 }
 
 // Run 23: the sun per pixel where a patch's edge crosses a triangle.

@@ -22,7 +22,8 @@ using duskmap::testing::RunDuskmap;
 std::string SmallConfig(const fs::path& root, const std::string& extra = "") {
   const std::string path = (root / "small.json").string();
   std::ofstream(path) << R"({"model": "boxes-2026-12-02", "max_frames": 3, )" << extra
-                      << R"("camera": {"width": 160, "height": 120, "fx": 131.25, "fy": 131.25, "motion_blur_scale": 0},
+                      << R"("camera": {"width": 160, "height": 120, "fx": 131.25, "fy": 131.25,
+                                      "exposure": {"motion_blur_scale": 0}},
     "lighting": {"light_texel_m": 0.25},
     "sessions": [{"name": "1", "clock_time": "16:46"}, {"name": "F", "clock_time": "19:42", "role": "localization"}]})";
   return path;

@@ -21,7 +21,7 @@ inline const std::string& TinyDatasetPath() {
     // were measured.
     GeneratorConfig config;
     ApplyGeneratorModel("boxes-2026-12-02", &config);
-    config.camera.motion_blur_scale = 0.0;
+    config.camera.exposure.motion_blur_scale = 0.0;
     // 640x480: at 320x240 SURF registration accepted transforms 5-9 deg off
     // and re-localized only 63 % of same-light frames (measured).
     config.max_frames = 25;

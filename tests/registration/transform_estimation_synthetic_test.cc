@@ -33,7 +33,7 @@ constexpr int kFrames[] = {0, 4, 8, 12};
 GeneratorConfig SmallConfig() {
   GeneratorConfig config;
   ApplyGeneratorModel("boxes-2026-12-02", &config);
-  config.camera.motion_blur_scale = 0.0;
+  config.camera.exposure.motion_blur_scale = 0.0;
   config.lighting.light_texel_m = 0.1;          // coarser light map: faster preparation
   return config;
 }

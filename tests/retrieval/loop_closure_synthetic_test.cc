@@ -73,7 +73,7 @@ bool SamePlace(const Rigid3d& a, const Rigid3d& b) {
 std::vector<MappedFrame> MapSyntheticSession(const std::string& feature_type) {
   GeneratorConfig config;  // the box apartment without motion blur
   ApplyGeneratorModel("boxes-2026-12-02", &config);
-  config.camera.motion_blur_scale = 0.0;
+  config.camera.exposure.motion_blur_scale = 0.0;
   config.camera.width = 320;
   config.camera.height = 240;
   config.camera.fx = config.camera.fy = 262.5;  // the 640x480 field of view

@@ -46,11 +46,11 @@ TEST(CameraModel, AutoExposureKeepsBrightnessNearTargetExceptAfterASuddenChange)
   for (int i = 0; i < 10; ++i) brightness.push_back(MeanBrightness(camera.Capture(dim)));
   for (int i = 0; i < 10; ++i) brightness.push_back(MeanBrightness(camera.Capture(bright)));
   // Converged on the dim scene.
-  for (int i = 6; i < 10; ++i) EXPECT_NEAR(brightness[i], options.ae_target, 0.06) << "frame " << i;
+  for (int i = 6; i < 10; ++i) EXPECT_NEAR(brightness[i], options.exposure.target, 0.06) << "frame " << i;
   // The first frame after the 8x jump is overexposed: the lag.
-  EXPECT_GT(brightness[10], options.ae_target + 0.2);
+  EXPECT_GT(brightness[10], options.exposure.target + 0.2);
   // Then it converges again within a few frames.
-  for (int i = 16; i < 20; ++i) EXPECT_NEAR(brightness[i], options.ae_target, 0.06) << "frame " << i;
+  for (int i = 16; i < 20; ++i) EXPECT_NEAR(brightness[i], options.exposure.target, 0.06) << "frame " << i;
 }
 
 TEST(CameraModel, GainAndNoiseGrowInTheDark) {
@@ -97,9 +97,9 @@ double HorizontalDetail(const cv::Mat& bgr) {
 
 TEST(CameraModel, TurningSmearsLongExposuresButNotShortOnes) {
   CameraModelOptions options = SmallOptions();
-  options.motion_blur_scale = 1.0;
-  options.photons_at_white = 1e9;  // no noise: compare detail only
-  options.read_noise = 0.0;
+  options.exposure.motion_blur_scale = 1.0;
+  options.noise.photons_at_white = 1e9;  // no noise: compare detail only
+  options.noise.read_noise = 0.0;
   // Vertical stripes 8 px wide: horizontal motion blurs them, vertical does not.
   auto stripes = [](float nits) {
     cv::Mat r(120, 160, CV_32FC3);
@@ -111,7 +111,7 @@ TEST(CameraModel, TurningSmearsLongExposuresButNotShortOnes) {
   CameraModel night(options, 1), day(options, 1);
   night.Settle(dim, 20);
   day.Settle(bright, 20);
-  ASSERT_NEAR(night.state().exposure_time_s, options.max_exposure_s, 1e-9);  // 33 ms: 6.6 px of motion
+  ASSERT_NEAR(night.state().exposure_time_s, options.exposure.max_time_s, 1e-9);  // 33 ms: 6.6 px of motion
   ASSERT_LT(day.state().exposure_time_s, 0.002);                             // < 0.4 px of motion
   const double night_still = HorizontalDetail(night.Capture(dim));
   const double night_turning = HorizontalDetail(night.Capture(dim, turning));
@@ -126,12 +126,12 @@ TEST(CameraModel, TurningSmearsLongExposuresButNotShortOnes) {
 TEST(CameraModel, SharpeningSteepensEdgesAndItsThresholdSparesFlatNoise) {
   // Vertical stripes 8 px wide, no sensor noise: the unsharp mask overshoots at each edge.
   CameraModelOptions clean = SmallOptions();
-  clean.photons_at_white = 1e9;
-  clean.read_noise = 0.0;
+  clean.noise.photons_at_white = 1e9;
+  clean.noise.read_noise = 0.0;
   cv::Mat stripes(120, 160, CV_32FC3);
   for (int c = 0; c < 160; ++c) stripes.col(c).setTo(cv::Scalar::all((c / 8) % 2 ? 60.0 : 20.0));
   CameraModelOptions sharp = clean;
-  sharp.sharpen_amount = 1.0;
+  sharp.image_processor.sharpen_amount = 1.0;
   const auto [plain, sharpened] = CaptureSettled(clean, sharp, stripes, 1);
   cv::Mat plain_green, sharp_green;
   cv::extractChannel(plain, plain_green, 1);
@@ -152,9 +152,9 @@ TEST(CameraModel, SharpeningSteepensEdgesAndItsThresholdSparesFlatNoise) {
   const cv::Mat flat(120, 160, CV_32FC3, cv::Scalar(2, 2, 2));
   CameraModelOptions noisy = SmallOptions();
   CameraModelOptions noisy_sharp = noisy;
-  noisy_sharp.sharpen_amount = 1.0;
+  noisy_sharp.image_processor.sharpen_amount = 1.0;
   CameraModelOptions noisy_cored = noisy_sharp;
-  noisy_cored.sharpen_threshold_levels = 32.0;
+  noisy_cored.image_processor.sharpen_threshold_levels = 32.0;
   CameraModel a(noisy, 5), b(noisy_sharp, 5), c(noisy_cored, 5);
   for (CameraModel* camera : {&a, &b, &c}) camera->Settle(flat, 20);
   cv::Scalar mean, std_plain, std_sharp, std_cored;
@@ -178,7 +178,7 @@ TEST(CameraModel, NoiseReductionFollowsTheGainAndKeepsEdges) {
   cv::Mat step = flat.clone();
   step.colRange(80, 160).setTo(cv::Scalar(8, 8, 8));
   CameraModelOptions reduced = options;
-  reduced.noise_reduction = 1.5;
+  reduced.image_processor.noise_reduction = 1.5;
   const auto [plain, denoised] = CaptureSettled(options, reduced, step, 5);
   cv::Scalar plain_mean, plain_std, reduced_mean, reduced_std;
   const cv::Rect dark_half(10, 10, 60, 100), bright_half(90, 10, 60, 100);
@@ -196,18 +196,18 @@ TEST(CameraModel, NoiseReductionFollowsTheGainAndKeepsEdges) {
 
 TEST(CameraModelOptions, CheckNamesTheField) {
   CameraModelOptions o;
-  o.ae_speed = 0.0;
+  o.exposure.speed = 0.0;
   try {
     o.Check();
     FAIL();
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("camera.ae_speed"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("camera.exposure.speed"), std::string::npos);
   }
   CameraModelOptions nr;
-  nr.noise_reduction = -1.0;
+  nr.image_processor.noise_reduction = -1.0;
   EXPECT_THROW(nr.Check(), ConfigError);
-  nr.noise_reduction = 1.0;
-  nr.noise_reduction_sigma_px = 0.0;
+  nr.image_processor.noise_reduction = 1.0;
+  nr.image_processor.noise_reduction_sigma_px = 0.0;
   EXPECT_THROW(nr.Check(), ConfigError);
 }
 

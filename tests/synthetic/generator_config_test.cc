@@ -44,9 +44,9 @@ TEST(ReadGeneratorConfig, DefaultConfigFileIsValidAndMatchesThePaper) {
   // per pixel on the furniture.
   EXPECT_TRUE(config.lighting.sun_per_texel);
   EXPECT_TRUE(config.lighting.mesh_sun_per_sample);
-  EXPECT_EQ(config.camera.noise_reduction, 1.5);
-  EXPECT_EQ(config.camera.sharpen_sigma_px, 5.0);
-  EXPECT_EQ(config.camera.sharpen_amount, 0.5);
+  EXPECT_EQ(config.camera.image_processor.noise_reduction, 1.5);
+  EXPECT_EQ(config.camera.image_processor.sharpen_sigma_px, 5.0);
+  EXPECT_EQ(config.camera.image_processor.sharpen_amount, 0.5);
 }
 
 TEST(ReadGeneratorConfig, ReadsTheOptionalCeilingLights) {
@@ -157,7 +157,7 @@ TEST(ReadGeneratorConfig, AConfigWithOnlyMaxFramesIsTheCalibratedDefault) {
   EXPECT_EQ(only.scene.furniture.pieces.size(), 38u);
   EXPECT_EQ(only.lighting.glass_transmission, 0.35);
   EXPECT_EQ(only.lighting.horizon_elevation_deg, 14.0);
-  EXPECT_EQ(only.camera.tone_contrast, 0.5);
+  EXPECT_EQ(only.camera.image_processor.tone_contrast, 0.5);
   EXPECT_NE(ToJsonObject(only.lighting), ToJsonObject(LightingOptions()));
 }
 
@@ -186,7 +186,7 @@ TEST(GeneratorModels, EachModelIsSelectableAndSetsEveryValueItDecides) {
   };
   // What each step of the calibration log added.
   EXPECT_TRUE(model("boxes-2026-12-02").scene.box_furniture);
-  EXPECT_EQ(model("boxes-2026-12-02").camera.motion_blur_scale, 1.0);
+  EXPECT_EQ(model("boxes-2026-12-02").camera.exposure.motion_blur_scale, 1.0);
   EXPECT_EQ(model("run10-2026-12-05").scene.lamp_intensity_scale, 3.2);
   EXPECT_FALSE(model("run10-2026-12-05").lighting.window_view_obstructed);
   EXPECT_TRUE(model("run14-2026-12-06").lighting.window_view_obstructed);
@@ -210,6 +210,30 @@ TEST(ReadGeneratorConfig, AnUnknownModelIsRefusedNamingTheKey) {
   GeneratorConfig config;
   config.model = "run99";
   EXPECT_THROW(config.Check(), ConfigError);
+}
+
+// The camera's options nest by stage; each flat key of before is refused
+// with the key that replaced it.
+TEST(ReadGeneratorConfig, TheCameraNestsByStageAndAMovedKeyIsRefusedWithItsNewKey) {
+  const GeneratorConfig nested = ReadGeneratorConfig(WriteConfig("nested", R"({"camera": {
+      "exposure": {"target": 0.3, "motion_blur_scale": 0.5}, "white_balance": {"strength": 0.5},
+      "noise": {"read_noise": 0.004}, "image_processor": {"tone_contrast": 0.2, "sharpen_amount": 1}}})"));
+  EXPECT_EQ(nested.camera.exposure.target, 0.3);
+  EXPECT_EQ(nested.camera.exposure.motion_blur_scale, 0.5);
+  EXPECT_EQ(nested.camera.white_balance.strength, 0.5);
+  EXPECT_EQ(nested.camera.noise.read_noise, 0.004);
+  EXPECT_EQ(nested.camera.image_processor.tone_contrast, 0.2);
+  EXPECT_EQ(nested.camera.image_processor.sharpen_amount, 1.0);
+  const std::vector<std::pair<std::string, std::string>> moved = MovedGeneratorKeys();
+  EXPECT_GE(moved.size(), 18u);
+  for (const auto& [old_key, new_key] : moved) {
+    const size_t dot = old_key.find('.');
+    const std::string path = WriteConfig(
+        "moved", "{\"" + old_key.substr(0, dot) + "\": {\"" + old_key.substr(dot + 1) + "\": 1}}");
+    EXPECT_EQ(ErrorOf(path), path + "." + old_key + ": moved to " + new_key);
+  }
+  const std::string range = ErrorOf(WriteConfig("range", R"({"camera": {"exposure": {"speed": 2}}})"));
+  EXPECT_NE(range.find("camera.exposure.speed must be in (0, 1]"), std::string::npos) << range;
 }
 
 TEST(ReadGeneratorConfig, MissingFileNamesIt) {

@@ -10,7 +10,7 @@ namespace duskmap::testing {
 inline GeneratorConfig SmallConfig(int max_frames = 3) {
   GeneratorConfig config;
   ApplyGeneratorModel("boxes-2026-12-02", &config);
-  config.camera.motion_blur_scale = 0.0;
+  config.camera.exposure.motion_blur_scale = 0.0;
   config.camera.width = 160;
   config.camera.height = 120;
   config.camera.fx = config.camera.fy = 131.25;

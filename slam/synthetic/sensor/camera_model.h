@@ -19,37 +19,61 @@
 
 namespace duskmap {
 
-struct CameraModelOptions {
-  int width = 640;             // pixels
-  int height = 480;            // pixels
-  double fx = 525.0;           // focal length, pixels
-  double fy = 525.0;           // focal length, pixels
-  double ae_target = 0.42;     // target mean brightness of the output, in [0, 1]
-  double ae_speed = 0.55;      // fraction of the log exposure error corrected per frame
-  double min_exposure_s = 1e-4;   // shortest exposure time, seconds
-  double max_exposure_s = 0.033;  // longest exposure time, seconds
-  double max_gain = 16.0;         // largest analogue gain (1 = base ISO)
-  double sensitivity = 0.135;     // linear signal per nit-second at gain 1 (1 = white)
-  double awb_speed = 0.4;         // fraction of the log white-balance error corrected per frame
-  double awb_strength = 0.75;     // fraction of the grey-world correction applied
-  double photons_at_white = 8000; // shot noise: photo-electrons at full scale, gain 1
-  double read_noise = 0.002;      // read noise std at gain 1, fraction of full scale
-  double blur_sigma_px = 0.6;     // optics blur, pixels
-  double gamma = 2.2;             // display gamma of the tone curve
-  double tone_contrast = 0.12;    // S-curve strength added to the gamma curve, [0, 0.5]
-  double motion_blur_scale = 0.0; // motion blur = image velocity x exposure time x this; 0 = off
-  // Sharpening of the 8-bit output: luma += amount x coring(luma - Gaussian(luma, sigma)),
-  // where coring shrinks each detail value towards 0 by threshold grey levels (noise below
-  // it is not amplified). 0 = off.
-  double sharpen_amount = 0.0;          // [0, 3]
-  double sharpen_sigma_px = 1.0;        // (0, 5], pixels
-  double sharpen_threshold_levels = 0.0;  // [0, 64], grey levels of 255
-  // Noise reduction of the 8-bit output, before sharpening: a bilateral filter (spatial sigma
+// Auto-exposure: how the camera meters and what exposure it may choose.
+struct CameraExposureOptions {
+  double target = 0.42;       // target mean brightness of the output, in [0, 1]
+  double speed = 0.55;        // fraction of the log exposure error corrected per frame
+  double min_time_s = 1e-4;   // shortest exposure time, seconds
+  double max_time_s = 0.033;  // longest exposure time, seconds
+  double max_gain = 16.0;     // largest analogue gain (1 = base ISO)
+  double sensitivity = 0.135; // linear signal per nit-second at gain 1 (1 = white)
+  double motion_blur_scale = 0.0;  // motion blur = image velocity x exposure time x this; 0 = off
+};
+
+// Grey-world auto white balance.
+struct WhiteBalanceOptions {
+  double speed = 0.4;      // fraction of the log white-balance error corrected per frame
+  double strength = 0.75;  // fraction of the grey-world correction applied
+};
+
+// The sensor's noise, at gain 1 (both grow with the gain).
+struct CameraNoiseOptions {
+  double photons_at_white = 8000;  // shot noise: photo-electrons at full scale
+  double read_noise = 0.002;       // read noise std, fraction of full scale
+};
+
+// The image processor: the tone curve, then noise reduction and sharpening
+// of the 8-bit output.
+struct ImageProcessorOptions {
+  double gamma = 2.2;          // display gamma of the tone curve
+  double tone_contrast = 0.12; // S-curve strength added to the gamma curve, [0, 0.5]
+  // Noise reduction, before sharpening: a bilateral filter (spatial sigma
   // noise_reduction_sigma_px) whose range sigma is noise_reduction x the noise a mid-grey
   // pixel carries at the frame's gain, summed over the three channels (the filter's colour
   // distance is the sum of the channels' absolute differences). 0 = off.
   double noise_reduction = 0.0;           // [0, 5]
   double noise_reduction_sigma_px = 1.5;  // (0, 5], pixels
+  // Sharpening: luma += amount x coring(luma - Gaussian(luma, sigma)), where coring shrinks
+  // each detail value towards 0 by threshold grey levels (noise below it is not
+  // amplified). 0 = off.
+  double sharpen_amount = 0.0;            // [0, 3]
+  double sharpen_sigma_px = 1.0;          // (0, 5], pixels
+  double sharpen_threshold_levels = 0.0;  // [0, 64], grey levels of 255
+};
+
+// The lens and image size, then each stage's options (JSON: the same nesting,
+// generator_config_json.h). Every stage's extras default to off: the
+// generator's models (generator_models.h) turn them on.
+struct CameraModelOptions {
+  int width = 640;              // pixels
+  int height = 480;             // pixels
+  double fx = 525.0;            // focal length, pixels
+  double fy = 525.0;            // focal length, pixels
+  double blur_sigma_px = 0.6;   // optics blur, pixels
+  CameraExposureOptions exposure;
+  WhiteBalanceOptions white_balance;
+  CameraNoiseOptions noise;
+  ImageProcessorOptions image_processor;
 
   PinholeCamera Intrinsics() const;
   void Check() const;
