@@ -58,7 +58,13 @@ std::vector<std::pair<std::string, std::string>> MovedGeneratorKeys() {
           {"camera.noise_reduction_sigma_px", "camera.image_processor.noise_reduction_sigma_px"},
           {"camera.sharpen_amount", "camera.image_processor.sharpen_amount"},
           {"camera.sharpen_sigma_px", "camera.image_processor.sharpen_sigma_px"},
-          {"camera.sharpen_threshold_levels", "camera.image_processor.sharpen_threshold_levels"}};
+          {"camera.sharpen_threshold_levels", "camera.image_processor.sharpen_threshold_levels"},
+          {"scene.lamp_intensity_scale", "scene.lamps.intensity_scale"},
+          {"scene.living_lamp_on_from", "scene.lamps.living_lamp_on_from"},
+          {"scene.bedroom_ceiling_cd", "scene.lamps.bedroom_ceiling_cd"},
+          {"scene.living_ceiling_cd", "scene.lamps.living_ceiling_cd"},
+          {"lighting.lamp_color_temperature_k", "scene.lamps.color_temperature_k"},
+          {"lighting.lamp_shade_nits_per_cd", "scene.lamps.shade_nits_per_cd"}};
 }
 
 namespace {

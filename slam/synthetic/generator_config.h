@@ -51,7 +51,8 @@ struct GeneratorConfig {
 };
 
 // The config keys that moved (issue 45: the camera's flat keys into its
-// stages), old dotted path -> new one. A file that still has one is refused
+// stages, the lamps' keys of scene and lighting into scene.lamps), old
+// dotted path -> new one. A file that still has one is refused
 // with its new key: "<path>.camera.ae_target: moved to camera.exposure.target".
 std::vector<std::pair<std::string, std::string>> MovedGeneratorKeys();
 

@@ -4,7 +4,7 @@
 // file's "model" (generator_models.h; absent: the default model) gives the
 // values it does not set (ReadGeneratorConfig).
 //   {"model": "run23-2026-12-06", "seed": 2024, "threads": 2, "max_frames": 0,
-//    "scene": {"wall_height_m": 2.5, ..., "furniture": {"catalog": "", "max_edge_m": 0.12,
+//    "scene": {"wall_height_m": 2.5, ..., "lamps": {"intensity_scale": 3.2, ...}, "furniture": {"catalog": "", "max_edge_m": 0.12,
 //              "pieces": [{"model": "bed1", "room": "bedroom", "position_m": [x, y]}]}},
 //    "lighting": {"latitude_deg": 45.4, ...}, "camera": {...}, "depth": {...},
 //    "route": {...}, "odometry": {...},
@@ -51,6 +51,20 @@ struct JsonCodec<FurnitureOptions> {
   }
 };
 
+// Every lamp knob; the light's keys sit in the lamps object itself.
+template <>
+struct JsonCodec<LampOptions> {
+  template <typename F, typename O>
+  static void Visit(F& f, O& o) {
+    f("intensity_scale", o.intensity_scale);
+    f("living_lamp_on_from", o.living_lamp_on_from);
+    f("bedroom_ceiling_cd", o.bedroom_ceiling_cd);
+    f("living_ceiling_cd", o.living_ceiling_cd);
+    f("color_temperature_k", o.light.color_temperature_k);
+    f("shade_nits_per_cd", o.light.shade_nits_per_cd);
+  }
+};
+
 template <>
 struct JsonCodec<ApartmentOptions> {
   template <typename F, typename O>
@@ -58,10 +72,7 @@ struct JsonCodec<ApartmentOptions> {
     f("seed", o.seed);
     f("textures_dir", o.textures_dir);
     f("wall_height_m", o.wall_height_m);
-    f("lamp_intensity_scale", o.lamp_intensity_scale);
-    f("living_lamp_on_from", o.living_lamp_on_from);
-    f("bedroom_ceiling_cd", o.bedroom_ceiling_cd);
-    f("living_ceiling_cd", o.living_ceiling_cd);
+    f("lamps", o.lamps);
     f("window_reflectance", o.window_reflectance);
     f("floor_reflectance", o.floor_reflectance);
     f("relief_scale", o.relief_scale);
@@ -89,8 +100,6 @@ struct JsonCodec<LightingOptions> {
     f("window_view_in_camera", o.window_view_in_camera);
     f("facade_reflectance", o.facade_reflectance);
     f("ground_reflectance", o.ground_reflectance);
-    f("lamp_color_temperature_k", o.lamp_color_temperature_k);
-    f("lamp_shade_nits_per_cd", o.lamp_shade_nits_per_cd);
     f("ambient_fraction", o.ambient_fraction);
     f("ambient_leak", o.ambient_leak);
     f("light_texel_m", o.light_texel_m);

@@ -16,7 +16,7 @@ namespace {
 void Boxes20261202(GeneratorConfig* c) {
   c->scene.box_furniture = true;
   c->scene.furniture.pieces.clear();
-  c->scene.lamp_intensity_scale = 1.6;
+  c->scene.lamps.intensity_scale = 1.6;
   c->lighting.horizon_elevation_deg = 1.5;
   c->lighting.ambient_fraction = 0.35;
   c->lighting.window_view_obstructed = false;
@@ -38,7 +38,7 @@ void Run10(GeneratorConfig* c) {
   Boxes20261202(c);
   c->scene.box_furniture = false;
   c->scene.furniture.pieces = DefaultFurniturePieces();
-  c->scene.lamp_intensity_scale = 3.2;
+  c->scene.lamps.intensity_scale = 3.2;
   c->lighting.horizon_elevation_deg = 14.0;
   c->lighting.ambient_fraction = 0.8;
   c->camera.image_processor.tone_contrast = 0.5;

@@ -36,9 +36,9 @@ TEST(ReadGeneratorConfig, DefaultConfigFileIsValidAndMatchesThePaper) {
   EXPECT_EQ(config.sessions[0].clock_time, "16:46");
   EXPECT_EQ(config.sessions[11].clock_time, "19:42");
   EXPECT_EQ(config.camera.width, 640);
-  EXPECT_EQ(config.scene.living_lamp_on_from, "17:54");
-  EXPECT_EQ(config.scene.bedroom_ceiling_cd, 0.0);  // the optional ceiling lights are off
-  EXPECT_EQ(config.scene.living_ceiling_cd, 0.0);
+  EXPECT_EQ(config.scene.lamps.living_lamp_on_from, "17:54");
+  EXPECT_EQ(config.scene.lamps.bedroom_ceiling_cd, 0.0);  // the optional ceiling lights are off
+  EXPECT_EQ(config.scene.lamps.living_ceiling_cd, 0.0);
   // Calibration run 22 (docs/synthetic_dataset.md): the sun per texel and the
   // image processor's noise reduction, then local contrast; run 23: the sun
   // per pixel on the furniture.
@@ -51,9 +51,9 @@ TEST(ReadGeneratorConfig, DefaultConfigFileIsValidAndMatchesThePaper) {
 
 TEST(ReadGeneratorConfig, ReadsTheOptionalCeilingLights) {
   const GeneratorConfig config = ReadGeneratorConfig(
-      WriteConfig("ceiling", R"({"scene": {"bedroom_ceiling_cd": 70, "living_ceiling_cd": 80}})"));
-  EXPECT_EQ(config.scene.bedroom_ceiling_cd, 70.0);
-  EXPECT_EQ(config.scene.living_ceiling_cd, 80.0);
+      WriteConfig("ceiling", R"({"scene": {"lamps": {"bedroom_ceiling_cd": 70, "living_ceiling_cd": 80}}})"));
+  EXPECT_EQ(config.scene.lamps.bedroom_ceiling_cd, 70.0);
+  EXPECT_EQ(config.scene.lamps.living_ceiling_cd, 80.0);
 }
 
 // The optional mirrors reach the scene's quads: window glass and the bare
@@ -187,7 +187,7 @@ TEST(GeneratorModels, EachModelIsSelectableAndSetsEveryValueItDecides) {
   // What each step of the calibration log added.
   EXPECT_TRUE(model("boxes-2026-12-02").scene.box_furniture);
   EXPECT_EQ(model("boxes-2026-12-02").camera.exposure.motion_blur_scale, 1.0);
-  EXPECT_EQ(model("run10-2026-12-05").scene.lamp_intensity_scale, 3.2);
+  EXPECT_EQ(model("run10-2026-12-05").scene.lamps.intensity_scale, 3.2);
   EXPECT_FALSE(model("run10-2026-12-05").lighting.window_view_obstructed);
   EXPECT_TRUE(model("run14-2026-12-06").lighting.window_view_obstructed);
   EXPECT_EQ(model("run14-2026-12-06").lighting.glass_transmission, 0.75);
@@ -225,7 +225,7 @@ TEST(ReadGeneratorConfig, TheCameraNestsByStageAndAMovedKeyIsRefusedWithItsNewKe
   EXPECT_EQ(nested.camera.image_processor.tone_contrast, 0.2);
   EXPECT_EQ(nested.camera.image_processor.sharpen_amount, 1.0);
   const std::vector<std::pair<std::string, std::string>> moved = MovedGeneratorKeys();
-  EXPECT_GE(moved.size(), 18u);
+  EXPECT_EQ(moved.size(), 24u);
   for (const auto& [old_key, new_key] : moved) {
     const size_t dot = old_key.find('.');
     const std::string path = WriteConfig(
@@ -234,6 +234,27 @@ TEST(ReadGeneratorConfig, TheCameraNestsByStageAndAMovedKeyIsRefusedWithItsNewKe
   }
   const std::string range = ErrorOf(WriteConfig("range", R"({"camera": {"exposure": {"speed": 2}}})"));
   EXPECT_NE(range.find("camera.exposure.speed must be in (0, 1]"), std::string::npos) << range;
+}
+
+// Every lamp knob is read from scene.lamps; the scene carries the lamps'
+// colour and shade glow to the lighting.
+TEST(ReadGeneratorConfig, TheLampKnobsLiveInSceneLamps) {
+  const GeneratorConfig config = ReadGeneratorConfig(WriteConfig("lamps", R"({"model": "boxes-2026-12-02",
+      "scene": {"lamps": {"intensity_scale": 2, "living_lamp_on_from": "18:00", "color_temperature_k": 4000,
+                          "shade_nits_per_cd": 10}}})"));
+  const LampOptions& lamps = config.scene.lamps;
+  EXPECT_EQ(lamps.intensity_scale, 2.0);
+  EXPECT_EQ(lamps.living_lamp_on_from, "18:00");
+  EXPECT_EQ(lamps.light.color_temperature_k, 4000.0);
+  EXPECT_EQ(lamps.light.shade_nits_per_cd, 10.0);
+  const Scene scene = BuildApartment(config.scene);
+  EXPECT_EQ(scene.lamp_light.color_temperature_k, 4000.0);
+  EXPECT_EQ(scene.lamp_light.shade_nits_per_cd, 10.0);
+  const SessionLighting lighting = ComputeSessionLighting(config.lighting, scene, 20.0);
+  EXPECT_EQ(lighting.lamp_color_bgr, ColorTemperatureToBgr(4000.0));
+  const std::string error =
+      ErrorOf(WriteConfig("lamp_range", R"({"scene": {"lamps": {"color_temperature_k": 100}}})"));
+  EXPECT_NE(error.find("scene.lamps.color_temperature_k must be in [1000, 12000]"), std::string::npos) << error;
 }
 
 TEST(ReadGeneratorConfig, MissingFileNamesIt) {

@@ -94,7 +94,7 @@ TEST_F(LightingTest, LampsCastShadows) {
 // cannot reach, and is on in every session.
 TEST_F(LightingTest, OptionalBedroomCeilingLightReachesBehindTheBed) {
   ApartmentOptions options;
-  options.bedroom_ceiling_cd = 70.0;
+  options.lamps.bedroom_ceiling_cd = 70.0;
   const Scene lit = BuildApartment(options);
   ASSERT_EQ(lit.lamps.size(), scene_->lamps.size() + 1);
   const SessionLighting l = ComputeSessionLighting(options_, lit, 20.75);
@@ -102,7 +102,7 @@ TEST_F(LightingTest, OptionalBedroomCeilingLightReachesBehindTheBed) {
   const IrradianceParts behind_bed =
       ComputeDirectIrradiance(lit, l, {1.2, 7.0, 0.001}, {0, 0, 1}, 3, -1);
   EXPECT_GT(Luminance(behind_bed.lamps), 1.0f);
-  options.bedroom_ceiling_cd = -1.0;
+  options.lamps.bedroom_ceiling_cd = -1.0;
   EXPECT_THROW(BuildApartment(options), ConfigError);
 }
 

@@ -245,8 +245,6 @@ void LightingOptions::Check() const {
       << "lighting.ground_reflectance must be in [0, 1], got " << ground_reflectance;
   SLAM_THROW_IF_NOT(ConfigError, !window_view_in_camera || window_view_obstructed)
       << "lighting.window_view_in_camera needs lighting.window_view_obstructed";
-  SLAM_THROW_IF_NOT(ConfigError, lamp_color_temperature_k >= 1000 && lamp_color_temperature_k <= 12000)
-      << "lighting.lamp_color_temperature_k must be in [1000, 12000], got " << lamp_color_temperature_k;
   SLAM_THROW_IF_NOT(ConfigError, ambient_fraction >= 0.0 && ambient_fraction < 1.0)
       << "lighting.ambient_fraction must be in [0, 1), got " << ambient_fraction;
   SLAM_THROW_IF_NOT(ConfigError, ambient_leak >= 0.0 && ambient_leak < 1.0)
@@ -255,7 +253,6 @@ void LightingOptions::Check() const {
       << "lighting.light_texel_m must be in [0.01, 0.5], got " << light_texel_m;
   SLAM_THROW_IF_NOT(ConfigError, mesh_sun_sample_m >= 0.001 && mesh_sun_sample_m <= 0.1)
       << "lighting.mesh_sun_sample_m must be in [0.001, 0.1], got " << mesh_sun_sample_m;
-  SLAM_THROW_IF_NOT(ConfigError, lamp_shade_nits_per_cd >= 0.0) << "lighting.lamp_shade_nits_per_cd must be >= 0";
   SLAM_THROW_IF_NOT(ConfigError, sky_log10_lux_knots.size() >= 2)
       << "lighting.sky_log10_lux_knots needs at least 2 knots";
   for (size_t i = 1; i < sky_log10_lux_knots.size(); ++i) {
@@ -335,7 +332,7 @@ SessionLighting ComputeSessionLighting(const LightingOptions& options, const Sce
     // illuminance, and half the ground's exitance.
     l.shaded_facade_nits_bgr = Scale(l.sky_nits_bgr + l.ground_nits_bgr, 0.5 * options.facade_reflectance);
   }
-  l.lamp_color_bgr = ColorTemperatureToBgr(options.lamp_color_temperature_k);
+  l.lamp_color_bgr = ColorTemperatureToBgr(scene.lamp_light.color_temperature_k);
   for (const Lamp& lamp : scene.lamps) l.lamp_on.push_back(IsLampOn(lamp, clock_time_h));
   return l;
 }
@@ -689,7 +686,7 @@ std::vector<cv::Mat> QuadTextures(const Scene& scene, const SessionLighting& lig
       radiance[i] = WindowTexture(q, lighting, pane_mask);
     } else if (q.emission == Emission::kLamp && lighting.lamp_on[q.lamp]) {
       radiance[i] = GlowTexture(q, lighting.lamp_color_bgr, scene.lamps[q.lamp].intensity_cd,
-                                options.lamp_shade_nits_per_cd);
+                                scene.lamp_light.shade_nits_per_cd);
     } else {
       const cv::Mat no_sun;
       radiance[i] = LitTexture(q, lighting, maps[i], sun.visibility.empty() ? no_sun : sun.visibility[i],

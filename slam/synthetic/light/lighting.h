@@ -43,8 +43,6 @@ struct LightingOptions {
   bool window_view_in_camera = false;
   double facade_reflectance = 0.3;  // brick, concrete (daylighting practice: 0.2-0.4)
   double ground_reflectance = 0.2;  // street, grass (the CIE's usual ground albedo)
-  double lamp_color_temperature_k = 2700;  // warm incandescent/LED
-  double lamp_shade_nits_per_cd = 15.0;    // glowing shade radiance per lamp candela
   double ambient_fraction = 0.35;          // interreflection: fraction of the room's mean irradiance
   double ambient_leak = 0.06;              // fraction of the apartment mean reaching every room
   double light_texel_m = 0.05;             // light-map spacing

@@ -19,11 +19,11 @@ int AddLamp(Scene& scene, const std::string& name, const Eigen::Vector3d& p, int
 }
 
 // A ceiling light on in every session: the lamp 0.25 m below the ceiling
-// above `xy`, in a glowing 0.3 m fixture (`cd` before lamp_intensity_scale).
+// above `xy`, in a glowing 0.3 m fixture (`cd` before lamps.intensity_scale).
 void AddCeilingLight(SceneBuilder& b, const std::string& name, const Eigen::Vector2d& xy, int room,
                      double cd, const ApartmentOptions& options) {
   const double z = options.wall_height_m - 0.25;
-  const int lamp = AddLamp(b.scene(), name, {xy.x(), xy.y(), z}, room, cd * options.lamp_intensity_scale, "");
+  const int lamp = AddLamp(b.scene(), name, {xy.x(), xy.y(), z}, room, cd * options.lamps.intensity_scale, "");
   b.AddBox({xy.x() - 0.15, xy.y() - 0.15, z + 0.05}, {xy.x() + 0.15, xy.y() + 0.15, z + 0.2}, room,
            TextureKind::kLampShade, {0.55f, 0.75f, 0.85f}, Emission::kLamp, lamp);
 }
@@ -93,7 +93,7 @@ void AddLivingRoom(SceneBuilder& b, const ApartmentOptions& options) {
   b.AddBox({0.18, 2.26, 0.6}, {0.26, 2.34, 0.7}, room, TextureKind::kPaint, {0.1f, 0.1f, 0.1f});
   b.AddObjectsOnSurface(0.05, 0.4, 2.44, 2.58, 0.6, 1, {1, 0}, room);
   const int table_lamp = AddLamp(s, "living table lamp", {0.22, 2.3, 0.85}, room,
-                                 35.0 * options.lamp_intensity_scale, "");
+                                 35.0 * options.lamps.intensity_scale, "");
   AddShade(b, table_lamp, {0.1, 0.1, 0.11});
   // Dining table with a bowl and three chairs.
   if (options.box_furniture) {
@@ -109,11 +109,11 @@ void AddLivingRoom(SceneBuilder& b, const ApartmentOptions& options) {
   b.AddSwitch(false, 6.0, {-1, 0}, 1.0, 1.05, room);
   // Floor lamp (on from the configured time).
   const int floor_lamp = AddLamp(s, "living floor lamp", {5.6, 4.2, 1.6}, room,
-                                 120.0 * options.lamp_intensity_scale, options.living_lamp_on_from);
+                                 120.0 * options.lamps.intensity_scale, options.lamps.living_lamp_on_from);
   b.AddBox({5.58, 4.18, 0.0}, {5.62, 4.22, 1.45}, room, TextureKind::kWood, {0.05f, 0.05f, 0.05f});
   AddShade(b, floor_lamp, {0.15, 0.15, 0.15});
-  if (options.living_ceiling_cd > 0.0) {
-    AddCeilingLight(b, "living ceiling", {3.0, 2.6}, room, options.living_ceiling_cd, options);
+  if (options.lamps.living_ceiling_cd > 0.0) {
+    AddCeilingLight(b, "living ceiling", {3.0, 2.6}, room, options.lamps.living_ceiling_cd, options);
   }
 }
 
@@ -170,7 +170,7 @@ void AddKitchen(SceneBuilder& b, const ApartmentOptions& options) {
   b.AddWallItem(true, 4.6, {0, -1}, 9.5, 0.28, 1.6, 1.88, room, TextureKind::kClock);
   b.AddSwitch(true, 4.6, {0, -1}, 6.87, 1.05, room);
   b.AddBox({6.2, 0.15, 0.0}, {6.5, 0.45, 0.45}, room, TextureKind::kPaint, {0.25f, 0.3f, 0.3f});
-  const int lamp = AddLamp(s, "kitchen ceiling", {8.0, 2.3, 2.25}, room, 110.0 * options.lamp_intensity_scale, "");
+  const int lamp = AddLamp(s, "kitchen ceiling", {8.0, 2.3, 2.25}, room, 110.0 * options.lamps.intensity_scale, "");
   b.AddBox({7.85, 2.15, 2.3}, {8.15, 2.45, 2.45}, room, TextureKind::kLampShade, {0.55f, 0.75f, 0.85f},
            Emission::kLamp, lamp);
 }
@@ -234,7 +234,7 @@ void AddCorridor(SceneBuilder& b, const ApartmentOptions& options) {
                     {0.25f, 0.3f, 0.35f}, TextureKind::kCabinet, {0.25f, 0.3f, 0.35f});
   b.AddObjectsOnSurface(9.15, 9.85, 5.63, 5.87, 1.0, 3, {0, -1}, room);
   for (double x : {2.5, 7.5}) {
-    const int lamp = AddLamp(s, "corridor ceiling", {x, 5.3, 2.3}, room, 70.0 * options.lamp_intensity_scale, "");
+    const int lamp = AddLamp(s, "corridor ceiling", {x, 5.3, 2.3}, room, 70.0 * options.lamps.intensity_scale, "");
     b.AddBox({x - 0.12, 5.18, 2.38}, {x + 0.12, 5.42, 2.48}, room, TextureKind::kLampShade,
              {0.55f, 0.75f, 0.85f}, Emission::kLamp, lamp);
   }
@@ -260,11 +260,11 @@ void AddBedroom(SceneBuilder& b, const ApartmentOptions& options) {
   b.AddBoxWithFront({4.45, 8.5, 0.0}, {4.85, 8.95, 0.55}, {0, -1}, room, TextureKind::kWood,
                     {0.1f, 0.2f, 0.32f}, TextureKind::kCabinet, {0.1f, 0.2f, 0.32f});
   b.AddObjectsOnSurface(4.47, 4.54, 8.52, 8.93, 0.55, 1, {0, -1}, room);
-  const int lamp = AddLamp(s, "bedside lamp", {4.65, 8.72, 0.75}, room, 45.0 * options.lamp_intensity_scale, "");
+  const int lamp = AddLamp(s, "bedside lamp", {4.65, 8.72, 0.75}, room, 45.0 * options.lamps.intensity_scale, "");
   b.AddBox({4.62, 8.69, 0.55}, {4.68, 8.75, 0.62}, room, TextureKind::kPaint, {0.1f, 0.1f, 0.1f});
   AddShade(b, lamp, {0.1, 0.1, 0.12});
-  if (options.bedroom_ceiling_cd > 0.0) {
-    AddCeilingLight(b, "bedroom ceiling", {2.6, 7.0}, room, options.bedroom_ceiling_cd, options);
+  if (options.lamps.bedroom_ceiling_cd > 0.0) {
+    AddCeilingLight(b, "bedroom ceiling", {2.6, 7.0}, room, options.lamps.bedroom_ceiling_cd, options);
   }
   // Wardrobe, dresser with objects, bookshelf, rug, plant, laundry basket.
   if (options.box_furniture) {
@@ -293,13 +293,23 @@ void AddBedroom(SceneBuilder& b, const ApartmentOptions& options) {
 
 }  // namespace
 
+void LampOptions::Check() const {
+  SLAM_THROW_IF_NOT(ConfigError, intensity_scale > 0.0)
+      << "scene.lamps.intensity_scale must be > 0, got " << intensity_scale;
+  SLAM_THROW_IF_NOT(ConfigError, bedroom_ceiling_cd >= 0.0 && living_ceiling_cd >= 0.0)
+      << "scene.lamps.bedroom_ceiling_cd and scene.lamps.living_ceiling_cd must be >= 0";
+  const bool time_ok = living_lamp_on_from.size() == 5 && living_lamp_on_from[2] == ':';
+  SLAM_THROW_IF_NOT(ConfigError, time_ok)
+      << "scene.lamps.living_lamp_on_from must be \"HH:MM\", got \"" << living_lamp_on_from << "\"";
+  SLAM_THROW_IF_NOT(ConfigError, light.color_temperature_k >= 1000 && light.color_temperature_k <= 12000)
+      << "scene.lamps.color_temperature_k must be in [1000, 12000], got " << light.color_temperature_k;
+  SLAM_THROW_IF_NOT(ConfigError, light.shade_nits_per_cd >= 0.0) << "scene.lamps.shade_nits_per_cd must be >= 0";
+}
+
 void ApartmentOptions::Check() const {
   SLAM_THROW_IF_NOT(ConfigError, wall_height_m >= 2.2 && wall_height_m <= 4.0)
       << "scene.wall_height_m must be in [2.2, 4], got " << wall_height_m;
-  SLAM_THROW_IF_NOT(ConfigError, lamp_intensity_scale > 0.0)
-      << "scene.lamp_intensity_scale must be > 0, got " << lamp_intensity_scale;
-  SLAM_THROW_IF_NOT(ConfigError, bedroom_ceiling_cd >= 0.0 && living_ceiling_cd >= 0.0)
-      << "scene.bedroom_ceiling_cd and scene.living_ceiling_cd must be >= 0";
+  lamps.Check();
   SLAM_THROW_IF_NOT(ConfigError, window_reflectance >= 0.0 && window_reflectance <= 0.5)
       << "scene.window_reflectance must be in [0, 0.5], got " << window_reflectance;
   SLAM_THROW_IF_NOT(ConfigError, floor_reflectance >= 0.0 && floor_reflectance <= 0.5)
@@ -308,9 +318,6 @@ void ApartmentOptions::Check() const {
       << "scene.relief_scale must be in [0, 10], got " << relief_scale;
   furniture.Check();
   CheckPhotoMaterialSpecs(photo_materials);
-  const bool time_ok = living_lamp_on_from.size() == 5 && living_lamp_on_from[2] == ':';
-  SLAM_THROW_IF_NOT(ConfigError, time_ok)
-      << "scene.living_lamp_on_from must be \"HH:MM\", got \"" << living_lamp_on_from << "\"";
 }
 
 Scene BuildApartment(const ApartmentOptions& options) {
@@ -323,6 +330,7 @@ Scene BuildApartment(const ApartmentOptions& options) {
   builder.SetPhotoMaterials(std::move(photos.materials));
   Scene& s = builder.scene();
   s.material_credits = std::move(photos.credits);
+  s.lamp_light = options.lamps.light;
   s.room_names = {"living room", "kitchen", "corridor", "bedroom"};
   AddLivingRoom(builder, options);
   AddKitchen(builder, options);

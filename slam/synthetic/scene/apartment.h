@@ -17,14 +17,22 @@
 
 namespace duskmap {
 
+// Every setting of the apartment's lamps (JSON "scene.lamps").
+struct LampOptions {
+  double intensity_scale = 1.6;  // multiplies every lamp's candela (tuned for realism)
+  std::string living_lamp_on_from = "17:54";  // clock time the living-room floor lamp goes on
+  double bedroom_ceiling_cd = 0.0;  // a bedroom ceiling light on in every session; 0 = none
+  double living_ceiling_cd = 0.0;   // a living-room ceiling light on in every session; 0 = none
+  LampLight light;                  // colour temperature and shade glow (the scene carries them)
+
+  void Check() const;  // throws ConfigError "scene.lamps.<field> ..."
+};
+
 struct ApartmentOptions {
   uint64_t seed = 7;           // texture seed
   std::string textures_dir;    // optional folder of images for pictures/posters
   double wall_height_m = 2.5;  // floor to ceiling
-  double lamp_intensity_scale = 1.6;  // multiplies every lamp's candela (tuned for realism)
-  std::string living_lamp_on_from = "17:54";  // clock time the living-room floor lamp goes on
-  double bedroom_ceiling_cd = 0.0;  // a bedroom ceiling light on in every session; 0 = none
-  double living_ceiling_cd = 0.0;   // a living-room ceiling light on in every session; 0 = none
+  LampOptions lamps;
   // Window glass reflects the room (mirror reflectance at normal incidence,
   // e.g. 0.08 for double glazing): invisible against the daylight sky, the
   // room's mirror image in a dark pane at night. 0 = windows only transmit.

@@ -59,6 +59,13 @@ struct Lamp {
   std::string on_from;         // local "HH:MM" from which it is on; empty = always on
 };
 
+// How the scene's lamps shine (LampOptions, apartment.h): the colour of
+// their light and the glow of a lit lamp's shade.
+struct LampLight {
+  double color_temperature_k = 2700;  // warm incandescent/LED
+  double shade_nits_per_cd = 15.0;    // glowing shade radiance per lamp candela
+};
+
 // A third-party file the scene shows besides its meshes (a photographic
 // material), as the dataset's manifest credits it.
 struct AssetCredit {
@@ -72,6 +79,7 @@ struct Scene {
   std::vector<std::string> room_names;
   std::vector<Quad> quads;
   std::vector<Lamp> lamps;
+  LampLight lamp_light;
   // Furniture meshes (scene_mesh.h), lit per vertex and drawn after the
   // quads; and their triangles for shadow rays, kept in step by
   // SetMeshes.
