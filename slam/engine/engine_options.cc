@@ -5,6 +5,7 @@
 
 #include "slam/core/check.h"
 #include "slam/engine/engine_options_json.h"
+#include "slam/features/feature_registry.h"
 
 namespace duskmap {
 
@@ -49,9 +50,10 @@ void EngineOptions::Check() const {
   proximity.Check();
   Registration().Check();
   matcher.Check();
-  SLAM_THROW_IF_NOT(ConfigError, matcher.type != "superglue" || features.type == "superpoint")
-      << "EngineOptions.matcher.type: superglue needs features.type superpoint, got "
-      << features.type;
+  const FeatureType* matched = FeatureTypeOfMatcher(matcher.type);
+  SLAM_THROW_IF_NOT(ConfigError, matched == nullptr || matched->name == features.type)
+      << "EngineOptions.matcher.type: " << matcher.type << " needs features.type " << matched->name
+      << ", got " << features.type;
   optimizer.Check();
   odometry.Check();
   mapping.Check();

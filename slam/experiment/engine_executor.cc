@@ -14,6 +14,7 @@
 #include "slam/experiment/feature_cache.h"
 #include "slam/experiment/job_results_json.h"
 #include "slam/features/feature_extractor.h"
+#include "slam/features/feature_registry.h"
 #include "slam/map/map_store.h"
 
 namespace duskmap {
@@ -82,9 +83,11 @@ EngineOptions EngineOptionsForFeature(const EngineOptions& base, const FeatureSe
     SLAM_THROW_IF_NOT(ConfigError, !options.matcher.superglue.model_path.empty())
         << "feature " << setup.label << " needs matcher.superglue.model_path in the engine config";
   }
-  if (setup.needs_model) {
-    SLAM_THROW_IF_NOT(ConfigError, !options.features.superpoint.model_path.empty())
-        << "feature " << setup.label << " needs features.superpoint.model_path in the engine config";
+  const FeatureType* type = FindFeatureType(setup.extractor);
+  if (setup.needs_model && type != nullptr && type->file) {
+    SLAM_THROW_IF_NOT(ConfigError, !type->file->path(options.features).empty())
+        << "feature " << setup.label << " needs features." << type->file->key
+        << " in the engine config";
   }
   options.Check();
   return options;
@@ -107,14 +110,7 @@ fs::path EngineJobExecutor::CacheFile(const std::string& extractor,
 double EngineJobExecutor::ExtractionMeanMs(const std::string& extractor,
                                            const std::string& session) const {
   const fs::path dir = OutputDir(output_dir_, "extract/" + extractor + "/" + session);
-  const nlohmann::json summary = ReadSummary(dir);
-  try {
-    return summary.at("extraction_ms").at("mean").get<double>();
-  } catch (const nlohmann::json::exception& e) {
-    SLAM_THROW(InputError) << (dir / "summary.json").string() << ": no extraction time ("
-                           << e.what() << ")";
-  }
-  return 0.0;
+  return ReadExtractJobSummary(dir).extraction_ms.mean;
 }
 
 void EngineJobExecutor::Execute(const Job& job, const fs::path& job_dir) {
@@ -138,17 +134,16 @@ void EngineJobExecutor::Extract(const Job& job, const fs::path& job_dir) {
     reader = dataset_.OpenSession(job.session);
   }
   EngineOptions options = engine_;
-  const FeatureSetup& setup = experiment_.FeatureSetupOfCache(job.extractor);
-  setup.ApplyTo(&options.features);
+  job.setup.ApplyTo(&options.features);
   options.features.Check();
   std::string shared_key;
   if (shared_cache_.enabled()) {
     shared_key = shared_cache_.KeyOf({job.session, job.extractor, options.features,
                                       experiment_.frame_step, experiment_.max_frames_per_session});
-    if (std::optional<nlohmann::json> summary =
+    if (std::optional<ExtractJobSummary> summary =
             shared_cache_.Restore(shared_key, job_dir / kFeatureCacheFile)) {
-      (*summary)["shared_cache"] = "restored " + shared_key;  // timings are the extraction's
-      WriteSummary(job_dir, *summary);
+      summary->shared_cache = "restored " + shared_key;  // timings are the extraction's
+      WriteSummary(job_dir, ToJsonObject(*summary));
       return;
     }
   }
@@ -174,21 +169,21 @@ void EngineJobExecutor::Extract(const Job& job, const fs::path& job_dir) {
   SLAM_THROW_IF_NOT(InputError, writer.num_frames() > 0)
       << "session " << job.session << ": no frame to extract features from";
   const StageTimingSummary t = SummarizeTimes(times_ms);
-  nlohmann::json summary = {{"extractor", job.extractor},
-                            {"session", job.session},
-                            {"frames", writer.num_frames()},
-                            {"mean_features", features_sum / writer.num_frames()},
-                            {"extraction_ms", {{"median", t.median_ms}, {"mean", t.mean_ms},
-                                               {"max", t.max_ms}}}};
+  ExtractJobSummary summary;
+  summary.extractor = job.extractor;
+  summary.session = job.session;
+  summary.frames = writer.num_frames();
+  summary.mean_features = features_sum / writer.num_frames();
+  summary.extraction_ms = {t.median_ms, t.mean_ms, t.max_ms};
   if (shared_cache_.enabled()) {
     shared_cache_.Store(shared_key, job_dir / kFeatureCacheFile, summary);
-    summary["shared_cache"] = "stored " + shared_key;
+    summary.shared_cache = "stored " + shared_key;
   }
-  WriteSummary(job_dir, summary);
+  WriteSummary(job_dir, ToJsonObject(summary));
 }
 
 void EngineJobExecutor::BuildMapJob(const Job& job, const fs::path& job_dir) {
-  EngineOptions options = EngineOptionsForFeature(engine_, experiment_.FeatureSetupOf(job.feature));
+  EngineOptions options = EngineOptionsForFeature(engine_, job.setup);
   options.mapping.reduce_graph = job.map.kind == MapKind::kReduced;
   std::vector<std::unique_ptr<FeatureCacheReader>> readers;
   std::vector<FrameSource*> sources;
@@ -236,7 +231,7 @@ void EngineJobExecutor::BuildMapJob(const Job& job, const fs::path& job_dir) {
 }
 
 void EngineJobExecutor::Localize(const Job& job, const fs::path& job_dir) {
-  const EngineOptions options = EngineOptionsForFeature(engine_, experiment_.FeatureSetupOf(job.feature));
+  const EngineOptions options = EngineOptionsForFeature(engine_, job.setup);
   const std::string map_file =
       (OutputDir(output_dir_, "map/" + job.feature + "/" + job.map.label) / kMapFile).string();
   // The words apart: the localizer imports its copy of them (the rows are

@@ -8,6 +8,7 @@
 #include "slam/experiment/job_plan.h"
 #include "slam/features/feature_options_json.h"
 #include "slam/features/feature_extractor.h"
+#include "slam/features/feature_registry.h"
 #include "slam/io/output_safety.h"
 
 namespace duskmap {
@@ -30,6 +31,45 @@ std::vector<ConsecutivePair> ReadPairs(const nlohmann::json& json, const std::st
   return pairs;
 }
 
+// "h5 or onnx": the types whose columns a config declares.
+std::string DeclarableTypes() {
+  std::string names;
+  for (const FeatureType& type : FeatureTypes()) {
+    if (type.DeclaredByConfig()) names += (names.empty() ? "" : " or ") + type.name;
+  }
+  return names;
+}
+
+// One declared column: {"code", "type", and the keys of its type's options
+// (features.h5's or features.onnx's)}, with the file its type reads required
+// and resolved against the config's folder.
+FeatureSetup ReadDeclaredColumn(JsonFields& column, const std::filesystem::path& base) {
+  const std::string& at = column.where();
+  FeatureSetup setup;
+  std::string type_name;
+  column.ReadRequired("code", &setup.label);
+  column.ReadRequired("type", &type_name);
+  const FeatureType* type = FindFeatureType(type_name);
+  SLAM_THROW_IF_NOT(ConfigError, type != nullptr && type->DeclaredByConfig())
+      << at << ".type: '" << type_name << "' cannot be declared (a config declares columns of type "
+      << DeclarableTypes() << ", which import a file or run a model; built-in types are listed by "
+      << "code: " << KnownFeatureColumnCodes() << ")";
+  // The column's keys are its type's options': the file's key without the
+  // options' own ("h5.path": "path").
+  const std::string file_key = type->file->key.substr(type->file->key.find('.') + 1);
+  SLAM_THROW_IF_NOT(ConfigError, column.Has(file_key)) << at << ": missing key '" << file_key << "'";
+  setup.extractor = type->name;
+  setup.matcher = "nndr";
+  if (type->id == FeatureTypeId::kH5) {
+    JsonCodecReader::ReadFields(column, &setup.h5);
+    setup.h5.path = ResolveRelative(setup.h5.path, base);
+  } else {
+    JsonCodecReader::ReadFields(column, &setup.onnx);
+    setup.onnx.model_path = ResolveRelative(setup.onnx.model_path, base);
+  }
+  return setup;
+}
+
 // The "features" array: known column codes as strings, declared columns as
 // objects {"code", "type": "h5", "path", "descriptor_kind", "keypoint_origin"}
 // or {"code", "type": "onnx", "model_path", <other features.onnx keys>}.
@@ -47,26 +87,7 @@ void ReadFeatures(JsonFields& root, const std::filesystem::path& base, Experimen
     SLAM_THROW_IF_NOT(ConfigError, features[i].is_object())
         << at << ": expected a column code or a declared column object";
     JsonFields column(features[i], at);
-    FeatureSetup setup;
-    std::string type;
-    column.ReadRequired("code", &setup.label);
-    column.ReadRequired("type", &type);
-    SLAM_THROW_IF_NOT(ConfigError, type == "h5" || type == "onnx")
-        << at << ".type: '" << type
-        << "' cannot be declared (h5 imports a file, onnx runs a model; built-in types are "
-           "listed by code: SU, SI, ...)";
-    if (type == "h5") {
-      SLAM_THROW_IF_NOT(ConfigError, column.Has("path")) << at << ": missing key 'path'";
-      JsonCodecReader::ReadFields(column, &setup.h5);
-      setup.h5.path = ResolveRelative(setup.h5.path, base);
-    } else {
-      SLAM_THROW_IF_NOT(ConfigError, column.Has("model_path"))
-          << at << ": missing key 'model_path'";
-      JsonCodecReader::ReadFields(column, &setup.onnx);
-      setup.onnx.model_path = ResolveRelative(setup.onnx.model_path, base);
-    }
-    setup.extractor = type;
-    setup.matcher = "nndr";
+    const FeatureSetup setup = ReadDeclaredColumn(column, base);
     options->features.push_back(setup.label);
     options->declared_features.push_back(setup);
   }
@@ -78,10 +99,15 @@ std::string FeatureSetup::CacheName() const {
   return IsDeclared() ? extractor + "-" + label : extractor;
 }
 
+bool FeatureSetup::IsDeclared() const {
+  const FeatureType* type = FindFeatureType(extractor);
+  return type != nullptr && type->DeclaredByConfig();
+}
+
 void FeatureSetup::ApplyTo(FeatureOptions* features) const {
   features->type = extractor;
-  if (extractor == "h5") features->h5 = h5;
-  if (extractor == "onnx") features->onnx = onnx;
+  if (extractor == FeatureTypeName(FeatureTypeId::kH5)) features->h5 = h5;
+  if (extractor == FeatureTypeName(FeatureTypeId::kOnnx)) features->onnx = onnx;
 }
 
 const FeatureSetup& ExperimentOptions::FeatureSetupOf(const std::string& label) const {
@@ -91,31 +117,21 @@ const FeatureSetup& ExperimentOptions::FeatureSetupOf(const std::string& label) 
   return FeatureSetupByLabel(label);
 }
 
-const FeatureSetup& ExperimentOptions::FeatureSetupOfCache(const std::string& cache_name) const {
-  for (const std::string& label : features) {
-    const FeatureSetup& setup = FeatureSetupOf(label);
-    if (setup.CacheName() == cache_name) return setup;
-  }
-  throw ConfigError("no feature column extracts '" + cache_name + "'");
-}
-
 const std::vector<FeatureSetup>& KnownFeatureSetups() {
-  auto known = [](const char* label, const char* extractor, const char* matcher, bool needs_model) {
-    FeatureSetup setup;
-    setup.label = label;
-    setup.extractor = extractor;
-    setup.matcher = matcher;
-    setup.needs_model = needs_model;
-    return setup;
-  };
-  static const std::vector<FeatureSetup> setups = {
-      known("SU", "surf", "nndr", false),       known("SI", "sift", "nndr", false),
-      known("BF", "brief", "nndr", false),      known("BK", "brisk", "nndr", false),
-      known("KA", "kaze", "nndr", false),       known("DY", "daisy", "nndr", false),
-      known("SP", "superpoint", "nndr", true),  known("SG", "superpoint", "superglue", true),
-      known("OR", "orb", "nndr", false),        known("AK", "akaze", "nndr", false),
-      known("FR", "freak", "nndr", false),
-  };
+  static const std::vector<FeatureSetup> setups = [] {
+    std::vector<FeatureSetup> known;
+    for (const FeatureType& type : FeatureTypes()) {
+      for (const FeatureColumn& column : type.columns) {
+        FeatureSetup setup;
+        setup.label = column.code;
+        setup.extractor = type.name;
+        setup.matcher = column.matcher;
+        setup.needs_model = type.file.has_value();
+        known.push_back(setup);
+      }
+    }
+    return known;
+  }();
   return setups;
 }
 
@@ -123,9 +139,7 @@ const FeatureSetup& FeatureSetupByLabel(const std::string& label) {
   for (const FeatureSetup& setup : KnownFeatureSetups()) {
     if (setup.label == label) return setup;
   }
-  std::string known;
-  for (const FeatureSetup& setup : KnownFeatureSetups()) known += " " + setup.label;
-  throw ConfigError("unknown feature '" + label + "' (known:" + known + ")");
+  throw ConfigError("unknown feature '" + label + "' (known: " + KnownFeatureColumnCodes() + ")");
 }
 
 namespace {
@@ -142,8 +156,8 @@ void CheckFeatureColumns(const ExperimentOptions& o) {
           << known.extractor << "); choose another code";
     }
     try {
-      if (declared.extractor == "h5") declared.h5.Check();
-      if (declared.extractor == "onnx") declared.onnx.Check();
+      if (declared.extractor == FeatureTypeName(FeatureTypeId::kH5)) declared.h5.Check();
+      if (declared.extractor == FeatureTypeName(FeatureTypeId::kOnnx)) declared.onnx.Check();
     } catch (const ConfigError& e) {
       SLAM_THROW(ConfigError) << "features: '" << declared.label << "': " << e.what();
     }

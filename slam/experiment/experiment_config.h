@@ -14,11 +14,14 @@
 namespace duskmap {
 
 // A feature column of the paper's tables: which extractor and which matcher.
+// The built-in columns are the registry's (features/feature_registry.h).
 struct FeatureSetup {
-  std::string label;      // column code, as in the paper: "SU", "SI", ..., "SG"
-  std::string extractor;  // extractor factory name: "surf", "sift", ..., "h5"
-  std::string matcher;    // "nndr" or "superglue"
-  bool needs_model = false;  // SuperPoint / SuperGlue need an ONNX model file
+  std::string label;      // column code, as in the paper: SU, SI, ..., SG
+  std::string extractor;  // the feature type's name (FeatureType::name)
+  std::string matcher;    // MatcherOptions::type: nndr or superglue
+  // The column's type reads a model that the engine config names
+  // (SuperPoint's, for SP and SG: FeatureType::file).
+  bool needs_model = false;
   // A column the experiment config declares: features imported from a file
   // in hloc's layout (extractor "h5") or detected by an ONNX model with its
   // declared contract (extractor "onnx"); unused by the built-in columns.
@@ -29,13 +32,15 @@ struct FeatureSetup {
   // for built-in columns (SP and SG share SuperPoint's), "<extractor>-<label>"
   // for a declared one (two declared columns never share a cache).
   std::string CacheName() const;
-  bool IsDeclared() const { return extractor == "h5" || extractor == "onnx"; }
+  // A column the experiment config declares (of a type with no built-in column).
+  bool IsDeclared() const;
   // Sets the column's extractor (and a declared column's file or model
   // options) on `features`, whose other options stay.
   void ApplyTo(FeatureOptions* features) const;
 };
 
-// The known feature columns (paper's eight plus ORB, AKAZE, FREAK).
+// The known feature columns (paper's eight plus ORB, AKAZE, FREAK): every
+// column of the feature registry, in its order.
 const std::vector<FeatureSetup>& KnownFeatureSetups();
 // Throws ConfigError when label is unknown.
 const FeatureSetup& FeatureSetupByLabel(const std::string& label);
@@ -71,8 +76,6 @@ struct ExperimentOptions {
   void Check() const;
   // The setup of column `label` (declared, else known); throws ConfigError.
   const FeatureSetup& FeatureSetupOf(const std::string& label) const;
-  // The setup of the first listed column whose CacheName() is `cache_name`.
-  const FeatureSetup& FeatureSetupOfCache(const std::string& cache_name) const;
 };
 
 // Reads and checks an experiment config; relative paths inside it are resolved

@@ -5,18 +5,18 @@
 #include <system_error>
 
 #include "slam/core/file_checksum.h"
+#include "slam/features/feature_registry.h"
 
 namespace duskmap {
 namespace fs = std::filesystem;
 
 std::vector<std::string> FeatureFilesOf(const FeatureOptions& features) {
-  std::string path;
-  if (features.type == "onnx") path = features.onnx.model_path;
-  if (features.type == "superpoint") path = features.superpoint.model_path;
-  if (features.type == "h5") path = features.h5.path;
+  const FeatureType* type = FindFeatureType(features.type);
+  if (type == nullptr || !type->file) return {};
+  const std::string& path = type->file->path(features);
   if (path.empty()) return {};
   std::error_code error;
-  if (features.type != "h5" || !fs::is_directory(path, error)) return {path};
+  if (!type->file->folder_per_session || !fs::is_directory(path, error)) return {path};
   std::vector<std::string> files;
   for (const fs::directory_entry& entry : fs::directory_iterator(path, error)) {
     if (entry.is_regular_file(error)) files.push_back(entry.path().string());

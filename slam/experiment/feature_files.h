@@ -17,8 +17,9 @@
 
 namespace duskmap {
 
-// The paths the feature type reads: onnx and superpoint their model, h5 its
-// file, or every regular file of its folder (sorted); none for the others.
+// The paths the feature type reads (FeatureType::file): onnx and superpoint
+// their model, h5 its file, or every regular file of its folder (sorted);
+// none for the others.
 std::vector<std::string> FeatureFilesOf(const FeatureOptions& features);
 
 // {path: 16 hexadecimal digits} of `paths`; a path that does not exist is

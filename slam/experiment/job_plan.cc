@@ -35,11 +35,12 @@ class PlanBuilder {
  public:
   explicit PlanBuilder(ExperimentPlan* plan) : plan_(plan) {}
 
-  void AddExtract(const std::string& extractor, const std::string& session) {
+  void AddExtract(const FeatureSetup& feature, const std::string& session) {
     Job job;
     job.kind = JobKind::kExtract;
-    job.id = ExtractId(extractor, session);
-    job.extractor = extractor;
+    job.id = ExtractId(feature.CacheName(), session);
+    job.extractor = feature.CacheName();
+    job.setup = feature;
     job.session = session;
     Add(std::move(job));
   }
@@ -49,9 +50,10 @@ class PlanBuilder {
     job.id = MapId(feature.label, map);
     job.feature = feature.label;
     job.extractor = feature.CacheName();
+    job.setup = feature;
     job.map = map;
     for (const std::string& session : map.sessions) {
-      AddExtract(feature.CacheName(), session);
+      AddExtract(feature, session);
       job.depends_on.push_back(ExtractId(feature.CacheName(), session));
     }
     Add(std::move(job));
@@ -59,12 +61,13 @@ class PlanBuilder {
   std::string AddLocalize(const FeatureSetup& feature, const MapSpec& map,
                           const std::string& session) {
     AddMap(feature, map);
-    AddExtract(feature.CacheName(), session);
+    AddExtract(feature, session);
     Job job;
     job.kind = JobKind::kLocalize;
     job.id = LocalizeId(feature.label, map, session);
     job.feature = feature.label;
     job.extractor = feature.CacheName();
+    job.setup = feature;
     job.map = map;
     job.session = session;
     job.depends_on = {MapId(feature.label, map), ExtractId(feature.CacheName(), session)};

@@ -22,7 +22,11 @@ struct Job {
   // "map/SI/1+3+5", "localize/SI/1+3+5/A".
   std::string id;
   std::string feature;    // FeatureSetup label (map and localize jobs)
-  std::string extractor;  // extractor name (every job)
+  std::string extractor;  // the feature cache's name, setup.CacheName() (every job)
+  // The column the job runs (its extractor, a declared column's file or
+  // model, its matcher); an extract job's is the first listed column that
+  // extracts its cache (columns sharing a cache differ only in the matcher).
+  FeatureSetup setup;
   MapSpec map;            // map and localize jobs: the map built or used
   std::string session;    // extract and localize jobs
   std::vector<std::string> depends_on;  // ids of jobs that must finish first

@@ -155,4 +155,8 @@ MapJobSummary ReadMapJobSummary(const std::filesystem::path& job_dir) {
   return ReadJobSummary<MapJobSummary>(job_dir);
 }
 
+ExtractJobSummary ReadExtractJobSummary(const std::filesystem::path& job_dir) {
+  return ReadJobSummary<ExtractJobSummary>(job_dir);
+}
+
 }  // namespace duskmap

@@ -1,10 +1,11 @@
 // What the jobs of an experiment leave behind for the report: one summary per
-// localization job and per map job, stored as summary.json in the job's
+// extract job, per localization job and per map job, stored as summary.json in the job's
 // folder. Per-frame records stay in the job folder (frames.jsonl) for figures.
 // `duskmap localize --summary` writes the same localization summary.
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -66,6 +67,25 @@ struct LocalizationJobSummary {
   std::string index_rebuild_reason;  // "" when restored
 };
 
+// Per-frame extraction time of an extract job, milliseconds.
+struct ExtractionTimesMs {
+  double median = 0.0;
+  double mean = 0.0;
+  double max = 0.0;
+};
+
+// An extract job's summary; a feature cache kept across runs stores it with
+// the features (shared_feature_cache.h) and a restored job writes it again.
+struct ExtractJobSummary {
+  std::string extractor;  // the feature cache's name (Job::extractor)
+  std::string session;
+  int64_t frames = 0;          // frames in the cache
+  double mean_features = 0.0;  // features per frame
+  ExtractionTimesMs extraction_ms;
+  // "stored <key>" or "restored <key>" with a cache kept across runs; "" without.
+  std::string shared_cache;
+};
+
 struct MapJobSummary {
   int num_nodes = 0;
   std::map<std::string, int> nodes_per_session;
@@ -98,10 +118,11 @@ LocalizationJobSummary SummarizeLocalization(const Map& map, const LocalizationR
 void WriteSummary(const std::filesystem::path& job_dir, const nlohmann::json& summary);
 nlohmann::json ReadSummary(const std::filesystem::path& job_dir);
 
-// A map or localize job's summary.json (ReadSummary) as its typed summary.
+// A job's summary.json (ReadSummary) as its typed summary.
 // InputError naming the file for a key that is unknown, of the wrong type, or
 // missing (the keys added later read as their defaults when absent).
 LocalizationJobSummary ReadLocalizationJobSummary(const std::filesystem::path& job_dir);
 MapJobSummary ReadMapJobSummary(const std::filesystem::path& job_dir);
+ExtractJobSummary ReadExtractJobSummary(const std::filesystem::path& job_dir);
 
 }  // namespace duskmap

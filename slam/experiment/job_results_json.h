@@ -65,6 +65,36 @@ struct JsonCodec<LocalizationJobSummary> {
 };
 
 template <>
+struct JsonCodec<ExtractionTimesMs> {
+  template <typename F, typename O>
+  static void Visit(F& f, O& o) {  // every key required
+    f("median", o.median);
+    f("mean", o.mean);
+    f("max", o.max);
+  }
+};
+
+//   {"extractor": "sift", "session": "1", "frames": 90, "mean_features": 998.2,
+//    "extraction_ms": {"median": 41.0, "mean": 42.3, "max": 60.1},
+//    "shared_cache": "stored 0123456789abcdef"}
+template <>
+struct JsonCodec<ExtractJobSummary> {
+  template <typename F, typename O>
+  static void Visit(F& f, O& o) {
+    VisitRequired(f, o);
+    f("shared_cache", o.shared_cache, JsonOmitEmpty{});  // only with a cache kept across runs
+  }
+  template <typename F, typename O>
+  static void VisitRequired(F& f, O& o) {
+    f("extractor", o.extractor);
+    f("session", o.session);
+    f("frames", o.frames);
+    f("mean_features", o.mean_features);
+    f("extraction_ms", o.extraction_ms);
+  }
+};
+
+template <>
 struct JsonCodec<MapJobSummary> {
   template <typename F, typename O>
   static void Visit(F& f, O& o) {

@@ -9,12 +9,13 @@
 
 #include "slam/core/check.h"
 #include "slam/core/checksum.h"
-#include "slam/core/json_reader.h"
 #include "slam/core/system_error.h"
 #include "slam/datasets/dataset_identity.h"
 #include "slam/experiment/feature_cache.h"
 #include "slam/experiment/feature_files.h"
+#include "slam/experiment/job_results_json.h"
 #include "slam/features/feature_options_json.h"
+#include "slam/features/feature_registry.h"
 
 namespace duskmap {
 namespace fs = std::filesystem;
@@ -82,10 +83,12 @@ SharedFeatureCache::SharedFeatureCache(SharedFeatureCacheOptions options)
 
 nlohmann::json SharedFeatureCache::FileChecksumsOf(const FeatureCacheInputs& inputs) const {
   std::vector<std::string> paths = FeatureFilesOf(inputs.features);
+  const FeatureType* type = FindFeatureType(inputs.features.type);
   std::error_code error;
-  if (inputs.features.type == "h5" && fs::is_directory(inputs.features.h5.path, error)) {
+  if (type != nullptr && type->file && type->file->folder_per_session &&
+      fs::is_directory(type->file->path(inputs.features), error)) {
     // A folder holds one "<session>.h5" per session; a session reads its own.
-    paths = {(fs::path(inputs.features.h5.path) / (inputs.session + ".h5")).string()};
+    paths = {(fs::path(type->file->path(inputs.features)) / (inputs.session + ".h5")).string()};
   }
   nlohmann::json checksums = nlohmann::json::object();
   for (const std::string& path : paths) {
@@ -110,21 +113,21 @@ std::string SharedFeatureCache::KeyOf(const FeatureCacheInputs& inputs) const {
   return Checksum64Hex(text.data(), text.size());
 }
 
-std::optional<nlohmann::json> SharedFeatureCache::Restore(const std::string& key,
-                                                          const fs::path& cache_file) const {
+std::optional<ExtractJobSummary> SharedFeatureCache::Restore(const std::string& key,
+                                                             const fs::path& cache_file) const {
   if (!enabled()) return std::nullopt;
   const fs::path entry = options_.folder / key;
   std::error_code ec;
   if (!fs::is_directory(entry, ec)) return std::nullopt;
-  nlohmann::json summary;
+  ExtractJobSummary summary;
   bool usable = false;
-  try {
-    summary = ReadJsonFile((entry / kSummaryFile).string());
+  try {  // missing, not JSON, nested too deep, or not an extract job's summary: a miss
+    summary = ReadExtractJobSummary(entry);
     const std::optional<int64_t> frames = FramesIn(entry / kEntryFile);
-    usable = frames && summary.at("frames").get<int64_t>() == *frames;
+    usable = frames && summary.frames == *frames;
   } catch (const nlohmann::json::exception&) {
     usable = false;
-  } catch (const Error&) {  // missing, not JSON, or nested too deep
+  } catch (const Error&) {
     usable = false;
   }
   if (!usable) {  // damaged or half-copied by hand: extract again
@@ -136,7 +139,7 @@ std::optional<nlohmann::json> SharedFeatureCache::Restore(const std::string& key
 }
 
 void SharedFeatureCache::Store(const std::string& key, const fs::path& cache_file,
-                               const nlohmann::json& summary) const {
+                               const ExtractJobSummary& summary) const {
   if (!enabled()) return;
   const fs::path entry = options_.folder / key;
   std::error_code ec;
@@ -148,7 +151,7 @@ void SharedFeatureCache::Store(const std::string& key, const fs::path& cache_fil
     LinkOrCopy(cache_file, partial / kEntryFile);
     errno = 0;
     std::ofstream out(partial / kSummaryFile);
-    out << summary.dump(1) << "\n";
+    out << ToJsonObject(summary).dump(1) << "\n";
     out.close();
     SLAM_THROW_IF_NOT(InputError, out.good())
         << (partial / kSummaryFile).string() << ": cannot write the feature cache's summary: "

@@ -25,6 +25,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "slam/experiment/job_results.h"
 #include "slam/features/feature_options.h"
 
 namespace duskmap {
@@ -58,16 +59,17 @@ class SharedFeatureCache {
   std::string KeyOf(const FeatureCacheInputs& inputs) const;
 
   // Links (or copies) the entry `key` to `cache_file` and returns its
-  // summary; nullopt when there is no entry or it is damaged (then removed).
-  std::optional<nlohmann::json> Restore(const std::string& key,
-                                        const std::filesystem::path& cache_file) const;
+  // summary; nullopt when there is no entry or it is damaged (then removed):
+  // a summary that is no ExtractJobSummary, or whose frames are not the file's.
+  std::optional<ExtractJobSummary> Restore(const std::string& key,
+                                           const std::filesystem::path& cache_file) const;
   // Stores `cache_file` and `summary` as entry `key`, replacing an older one.
   // Throws InputError naming the folder when it cannot be written.
   void Store(const std::string& key, const std::filesystem::path& cache_file,
-             const nlohmann::json& summary) const;
+             const ExtractJobSummary& summary) const;
 
   static constexpr const char* kEntryFile = "features.bin";
-  static constexpr const char* kSummaryFile = "summary.json";
+  static constexpr const char* kSummaryFile = "summary.json";  // a job's (ReadExtractJobSummary)
 
  private:
   // {path: checksum} of the files the inputs' feature type reads.

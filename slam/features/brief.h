@@ -27,7 +27,7 @@ class BriefExtractor : public FeatureExtractor {
  public:
   BriefExtractor(const BriefOptions& brief, const GfttOptions& gftt, int max_features,
                  double max_depth_m = 0.0);
-  std::string name() const override { return "brief"; }
+  std::string name() const override { return FeatureTypeName(FeatureTypeId::kBrief); }
   DescriptorKind kind() const override { return DescriptorKind::kBinary; }
 
  protected:

@@ -38,7 +38,7 @@ class DaisyExtractor : public FeatureExtractor {
  public:
   DaisyExtractor(const DaisyOptions& daisy, const SurfOptions& surf, int max_features,
                  double max_depth_m = 0.0);
-  std::string name() const override { return "daisy"; }
+  std::string name() const override { return FeatureTypeName(FeatureTypeId::kDaisy); }
   DescriptorKind kind() const override { return DescriptorKind::kFloat; }
 
  protected:

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <initializer_list>
 
+#include "slam/features/feature_registry.h"
+
 namespace duskmap {
 
 #define FEATURE_OPTION_CHECK(cond, name) \
@@ -81,12 +83,6 @@ void SuperPointOptions::Check() const {
 
 namespace {
 
-std::string KnownTypes() {
-  std::string known;
-  for (const std::string& name : FeatureTypeNames()) known += (known.empty() ? "" : ", ") + name;
-  return known;
-}
-
 void CheckOneOf(const std::string& value, std::initializer_list<const char*> allowed,
                 const std::string& key) {
   std::string known;
@@ -132,12 +128,11 @@ void OnnxFeatureOptions::Check() const {
 }
 
 void FeatureOptions::Check() const {
-  const auto& names = FeatureTypeNames();
-  if (std::find(names.begin(), names.end(), type) == names.end()) {
-    SLAM_THROW(ConfigError) << "features.type: unknown feature type '" << type
-                            << "' (known: " << KnownTypes()
-                            << "; experiment configs use the paper's column codes SU, SI, ... instead)";
-  }
+  const FeatureType* known = FindFeatureType(type);
+  SLAM_THROW_IF_NOT(ConfigError, known != nullptr)
+      << "features.type: unknown feature type '" << type << "' (known: " << KnownFeatureTypeNames()
+      << "; experiment configs use the paper's column codes instead: " << KnownFeatureColumnCodes()
+      << ")";
   // 100,000 features of a 640x480 frame are one every 3 pixels: past any use.
   FEATURE_OPTION_CHECK(max_features >= 1 && max_features <= 100000, "max_features");
   FEATURE_OPTION_CHECK(vocabulary_features >= 1 && vocabulary_features <= max_features,
@@ -157,22 +152,26 @@ void FeatureOptions::Check() const {
   superpoint.Check();
   onnx.Check();
   h5.Check();
-  SLAM_THROW_IF_NOT(ConfigError, type != "h5" || !h5.path.empty())
-      << "features.h5.path: features of type h5 need the .h5 file (or folder of <session>.h5)";
-  SLAM_THROW_IF_NOT(ConfigError, type != "onnx" || !onnx.model_path.empty())
-      << "features.onnx.model_path: features of type onnx need the model's .onnx file";
+  const std::optional<FeatureFileSpec>& file = known->file;
+  SLAM_THROW_IF_NOT(ConfigError, !file || file->required.empty() || !file->path(*this).empty())
+      << "features." << file->key << ": features of type " << type << " need " << file->required;
 }
 
 const std::vector<std::string>& BuiltInFeatureTypeNames() {
-  static const std::vector<std::string> kNames = {"surf", "sift", "brief", "brisk", "kaze",
-                                                  "daisy", "orb", "akaze", "freak"};
+  static const std::vector<std::string> kNames = [] {
+    std::vector<std::string> names;
+    for (const FeatureType& type : FeatureTypes()) {
+      if (!type.file) names.push_back(type.name);
+    }
+    return names;
+  }();
   return kNames;
 }
 
 const std::vector<std::string>& FeatureTypeNames() {
   static const std::vector<std::string> kNames = [] {
-    std::vector<std::string> names = BuiltInFeatureTypeNames();
-    names.insert(names.end(), {"superpoint", "onnx", "h5"});
+    std::vector<std::string> names;
+    for (const FeatureType& type : FeatureTypes()) names.push_back(type.name);
     return names;
   }();
   return kNames;
@@ -181,9 +180,9 @@ const std::vector<std::string>& FeatureTypeNames() {
 std::string FeatureTypeFromName(const std::string& name, const std::string& where) {
   std::string lower = name;
   for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  const auto& names = FeatureTypeNames();
-  SLAM_THROW_IF_NOT(ConfigError, std::find(names.begin(), names.end(), lower) != names.end())
-      << where << ": unknown feature type '" << name << "' (known: " << KnownTypes() << ")";
+  SLAM_THROW_IF_NOT(ConfigError, FindFeatureType(lower) != nullptr)
+      << where << ": unknown feature type '" << name << "' (known: " << KnownFeatureTypeNames()
+      << ")";
   return lower;
 }
 

@@ -172,10 +172,14 @@ struct H5FeatureOptions {
   void Check() const;
 };
 
+// The default feature type's name: SURF's (feature_registry.cc).
+const std::string& DefaultFeatureTypeName();
+
 // Which extractor to build and its options. `type` is one of
-// FeatureTypeNames(); only the sub-options of that type are used.
+// FeatureTypeNames() (the types of feature_registry.h); only the sub-options
+// of that type are used.
 struct FeatureOptions {
-  std::string type = "surf";
+  std::string type = DefaultFeatureTypeName();
   int max_features = 1000;        // Vis/MaxFeatures: kept per frame, strongest first
   int vocabulary_features = 400;  // Kp/MaxFeatures: the first rows quantized into words
   double max_depth_m = 0.0;       // 3D points beyond this depth are NaN; 0 = no limit
@@ -196,7 +200,7 @@ struct FeatureOptions {
   void Check() const;
 };
 
-// surf, sift, brief, brisk, kaze, daisy, orb, akaze, freak, superpoint, onnx, h5.
+// The names of FeatureTypes() (feature_registry.h), in its order.
 const std::vector<std::string>& FeatureTypeNames();
 
 // The types that need no file (every type but superpoint, onnx and h5, which

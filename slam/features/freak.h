@@ -44,7 +44,7 @@ class FreakExtractor : public FeatureExtractor {
  public:
   FreakExtractor(const FreakOptions& freak, const GfttOptions& gftt, const FastOptions& fast,
                  int max_features, double max_depth_m = 0.0);
-  std::string name() const override { return "freak"; }
+  std::string name() const override { return FeatureTypeName(FeatureTypeId::kFreak); }
   DescriptorKind kind() const override { return DescriptorKind::kBinary; }
 
  protected:

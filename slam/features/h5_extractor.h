@@ -23,7 +23,7 @@ class H5FeatureExtractor : public FeatureExtractor {
   // missing or not HDF5.
   H5FeatureExtractor(const H5FeatureOptions& options, int max_features, double max_depth_m);
 
-  std::string name() const override { return "h5"; }
+  std::string name() const override { return FeatureTypeName(FeatureTypeId::kH5); }
   DescriptorKind kind() const override { return kind_; }
   bool DetectsOnImages() const override { return false; }
 

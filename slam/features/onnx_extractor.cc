@@ -55,11 +55,11 @@ int OutputIndex(const std::vector<std::string>& names, const std::string& name) 
 }  // namespace
 
 OnnxFeatureExtractor::OnnxFeatureExtractor(const OnnxFeatureOptions& options, int max_features,
-                                           double max_depth_m, std::string type_name,
+                                           double max_depth_m, FeatureTypeId type,
                                            std::string model_label)
     : FeatureExtractor(max_features, max_depth_m),
       options_(options),
-      type_name_(std::move(type_name)),
+      type_name_(FeatureTypeName(type)),
       model_label_(std::move(model_label)) {
   options_.Check();
   const std::string& path = options_.model_path;

@@ -20,12 +20,12 @@ namespace duskmap {
 
 class OnnxFeatureExtractor : public FeatureExtractor {
  public:
-  // `type_name` is the feature type ("onnx", "superpoint"); `model_label`
+  // `type` is the feature type (onnx, superpoint); `model_label`
   // names the model kind in contract errors ("SuperPoint": "not a SuperPoint
   // model"). Throws InputError naming the file when the model is missing,
   // unreadable, fails to run, or its outputs do not match the contract.
   OnnxFeatureExtractor(const OnnxFeatureOptions& options, int max_features, double max_depth_m,
-                       std::string type_name = "onnx", std::string model_label = "");
+                       FeatureTypeId type = FeatureTypeId::kOnnx, std::string model_label = "");
   std::string name() const override { return type_name_; }
   DescriptorKind kind() const override { return DescriptorKind::kFloat; }
   bool DetectsOnColor() const override { return options_.input_color != "gray"; }

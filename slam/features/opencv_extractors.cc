@@ -54,7 +54,7 @@ std::unique_ptr<FeatureExtractor> CreateSiftExtractor(const SiftOptions& o, int 
                                                       double max_depth_m) {
   o.Check();
   return std::make_unique<OpenCvExtractor>(
-      "sift",
+      FeatureTypeName(FeatureTypeId::kSift),
       cv::SIFT::create(max_features, o.octave_layers, o.contrast_threshold, o.edge_threshold,
                        o.sigma),
       DescriptorKind::kFloat, max_features, max_depth_m, o.root_sift);
@@ -64,7 +64,7 @@ std::unique_ptr<FeatureExtractor> CreateOrbExtractor(const OrbOptions& o, int ma
                                                      double max_depth_m) {
   o.Check();
   return std::make_unique<OpenCvExtractor>(
-      "orb",
+      FeatureTypeName(FeatureTypeId::kOrb),
       cv::ORB::create(max_features, static_cast<float>(o.scale_factor), o.levels,
                       o.edge_threshold, /*firstLevel=*/0, /*WTA_K=*/2, cv::ORB::HARRIS_SCORE,
                       o.patch_size, o.fast_threshold),
@@ -75,7 +75,8 @@ std::unique_ptr<FeatureExtractor> CreateBriskExtractor(const BriskOptions& o, in
                                                        double max_depth_m) {
   o.Check();
   return std::make_unique<OpenCvExtractor>(
-      "brisk", cv::BRISK::create(o.threshold, o.octaves, static_cast<float>(o.pattern_scale)),
+      FeatureTypeName(FeatureTypeId::kBrisk),
+      cv::BRISK::create(o.threshold, o.octaves, static_cast<float>(o.pattern_scale)),
       DescriptorKind::kBinary, max_features, max_depth_m);
 }
 
@@ -83,7 +84,7 @@ std::unique_ptr<FeatureExtractor> CreateKazeExtractor(const KazeOptions& o, int 
                                                       double max_depth_m) {
   o.Check();
   return std::make_unique<OpenCvExtractor>(
-      "kaze",
+      FeatureTypeName(FeatureTypeId::kKaze),
       cv::KAZE::create(o.extended, o.upright, static_cast<float>(o.threshold), o.octaves,
                        o.octave_layers, cv::KAZE::DIFF_PM_G2),
       DescriptorKind::kFloat, max_features, max_depth_m, /*root_sift=*/false,
@@ -94,7 +95,7 @@ std::unique_ptr<FeatureExtractor> CreateAkazeExtractor(const AkazeOptions& o, in
                                                        double max_depth_m) {
   o.Check();
   return std::make_unique<OpenCvExtractor>(
-      "akaze",
+      FeatureTypeName(FeatureTypeId::kAkaze),
       cv::AKAZE::create(cv::AKAZE::DESCRIPTOR_MLDB, 0, 3, static_cast<float>(o.threshold),
                         o.octaves, o.octave_layers, cv::KAZE::DIFF_PM_G2),
       DescriptorKind::kBinary, max_features, max_depth_m);

@@ -29,7 +29,7 @@ OnnxFeatureOptions SuperPointContract(const SuperPointOptions& options) {
 std::unique_ptr<FeatureExtractor> CreateSuperPointExtractor(const SuperPointOptions& options,
                                                             int max_features, double max_depth_m) {
   return std::make_unique<OnnxFeatureExtractor>(SuperPointContract(options), max_features,
-                                                max_depth_m, "superpoint", "SuperPoint");
+                                                max_depth_m, FeatureTypeId::kSuperPoint, "SuperPoint");
 }
 
 }  // namespace duskmap

@@ -37,7 +37,9 @@ cv::Mat DescribeSurf(const cv::Mat& gray, const std::vector<cv::KeyPoint>& keypo
 class SurfExtractor : public FeatureExtractor {
  public:
   SurfExtractor(const SurfOptions& options, int max_features, double max_depth_m = 0.0);
-  std::string name() const override { return options_.upright ? "surf-upright" : "surf"; }
+  std::string name() const override { 
+    return FeatureTypeName(FeatureTypeId::kSurf) + (options_.upright ? "-upright" : "");
+  }
   DescriptorKind kind() const override { return DescriptorKind::kFloat; }
 
  protected:

@@ -93,7 +93,7 @@ TEST(FeatureCacheWriteError, ACopyIntoTheSharedCacheNamesTheFileAndTheReason) {
   std::string error;
   {
     const FileSizeLimit limit(64 * 1024);
-    error = testing::ErrorOf([&] { cache.Store("key", cache_file, {{"frames", 1}}); });
+    error = testing::ErrorOf([&] { cache.Store("key", cache_file, ExtractJobSummary{}); });
   }
   const std::string partial = (folder / ("key.partial-" + std::to_string(::getpid())) / "features.bin").string();
   EXPECT_EQ(error, partial + ": write failed: File too large");

@@ -76,6 +76,24 @@ TEST(PlanExperiment, ExtractionIsSharedAcrossMapsAndMatchers) {
   EXPECT_NE(plan.FindJob("map/SP/1+6"), nullptr);
 }
 
+// Every job carries its column's setup: the executor never looks it up
+// again. SP and SG share one extract job, run with SP's setup (listed first).
+TEST(PlanExperiment, JobsCarryTheirFeatureSetup) {
+  ExperimentOptions options = SmallOptions();
+  options.features = {"SP", "SG", "OR"};
+  const ExperimentPlan plan = PlanExperiment(options, PaperClock());
+  for (const Job& job : plan.jobs) {
+    EXPECT_EQ(job.setup.CacheName(), job.extractor) << job.id;
+    if (job.kind == JobKind::kExtract) {
+      EXPECT_EQ(job.setup.label, job.extractor == "orb" ? "OR" : "SP") << job.id;
+    } else {
+      EXPECT_EQ(job.setup.label, job.feature) << job.id;
+      EXPECT_EQ(job.setup.matcher, job.feature == "SG" ? "superglue" : "nndr") << job.id;
+    }
+  }
+  EXPECT_EQ(plan.FindJob("extract/superpoint/A")->setup.extractor, "superpoint");
+}
+
 TEST(PlanExperiment, ConsecutivePairsGetGapClasses) {
   const ExperimentPlan plan = PlanExperiment(SmallOptions(), PaperClock());
   std::vector<int> classes;

@@ -102,6 +102,22 @@ const char kMapSummary[] = R"({
 }
 )";
 
+// An extract job's summary as duskmap run wrote it before it had a codec
+// (the quick profile's extract/surf/A, with a feature cache kept across runs).
+const char kExtractSummary[] = R"({
+ "extraction_ms": {
+  "max": 201.756902,
+  "mean": 111.68217603333333,
+  "median": 113.66301200000001
+ },
+ "extractor": "surf",
+ "frames": 90,
+ "mean_features": 598.3555555555556,
+ "session": "A",
+ "shared_cache": "stored f65ceea034aff113"
+}
+)";
+
 // A job folder holding `json` as its summary.json.
 fs::path JobWith(const nlohmann::json& json) {
   const fs::path dir = ::duskmap::testing::ProcessTempDir("job_results");
@@ -205,6 +221,53 @@ TEST(JobSummaryCodec, RefusesUnknownKeysAndWrongTypesNamingTheFile) {
   const std::string not_object =
       ::duskmap::testing::ErrorOf([&] { ReadMapJobSummary(JobWith(nlohmann::json::array())); });
   EXPECT_NE(not_object.find("expected an object, got array"), std::string::npos) << not_object;
+}
+
+TEST(JobSummaryCodec, ReadsAndRewritesAnExtractSummaryByteForByte) {
+  const fs::path dir = JobWith(nlohmann::json::parse(kExtractSummary));
+  const ExtractJobSummary s = ReadExtractJobSummary(dir);
+  EXPECT_EQ(s.extractor, "surf");
+  EXPECT_EQ(s.session, "A");
+  EXPECT_EQ(s.frames, 90);
+  EXPECT_DOUBLE_EQ(s.mean_features, 598.3555555555556);
+  EXPECT_DOUBLE_EQ(s.extraction_ms.median, 113.66301200000001);
+  EXPECT_DOUBLE_EQ(s.extraction_ms.mean, 111.68217603333333);
+  EXPECT_DOUBLE_EQ(s.extraction_ms.max, 201.756902);
+  EXPECT_EQ(s.shared_cache, "stored f65ceea034aff113");
+  WriteSummary(dir, ToJsonObject(s));
+  EXPECT_EQ(SummaryText(dir), kExtractSummary);
+
+  // Without a feature cache kept across runs the key is left out, as before.
+  nlohmann::json plain = nlohmann::json::parse(kExtractSummary);
+  plain.erase("shared_cache");
+  const fs::path plain_dir = JobWith(plain);
+  const ExtractJobSummary p = ReadExtractJobSummary(plain_dir);
+  EXPECT_EQ(p.shared_cache, "");
+  EXPECT_EQ(ToJsonObject(p), plain);
+}
+
+TEST(JobSummaryCodec, RefusesACorruptOrOldExtractSummaryInOneLineNamingTheFile) {
+  nlohmann::json old = nlohmann::json::parse(kExtractSummary);
+  old["extraction_ms"].erase("mean");  // an extraction time without its mean
+  const fs::path dir = JobWith(old);
+  const std::string missing = ::duskmap::testing::ErrorOf([&] { ReadExtractJobSummary(dir); });
+  EXPECT_EQ(missing, (dir / "summary.json").string() +
+                         ".extraction_ms: missing key 'mean' (malformed job summary)");
+
+  nlohmann::json renamed = nlohmann::json::parse(kExtractSummary);
+  renamed["num_frames"] = renamed["frames"];
+  renamed.erase("frames");
+  const std::string unknown =
+      ::duskmap::testing::ErrorOf([&] { ReadExtractJobSummary(JobWith(renamed)); });
+  EXPECT_NE(unknown.find("summary.json"), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("'num_frames'"), std::string::npos) << unknown;
+
+  const fs::path cut = ::duskmap::testing::ProcessTempDir("job_results_cut");
+  std::ofstream(cut / "summary.json") << std::string(kExtractSummary).substr(0, 60);
+  const std::string truncated = ::duskmap::testing::ErrorOf([&] { ReadExtractJobSummary(cut); });
+  EXPECT_EQ(truncated.rfind((cut / "summary.json").string(), 0), 0u) << truncated;
+  EXPECT_EQ(truncated.find('\n'), std::string::npos) << truncated;
+  EXPECT_NE(truncated.find("malformed job summary"), std::string::npos) << truncated;
 }
 
 }  // namespace

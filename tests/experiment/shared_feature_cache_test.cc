@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "slam/experiment/feature_cache.h"
+#include "slam/experiment/job_results_json.h"
 #include "tests/testing/temp_dir.h"
 
 namespace duskmap {
@@ -149,11 +150,16 @@ TEST(SharedFeatureCacheTest, StoredEntriesRestoreAndDamagedOnesAreMisses) {
   EXPECT_FALSE(cache.Restore(key, dir + "/restored.bin").has_value());  // empty cache
 
   WriteCacheFile(dir + "/extracted.bin", 3);
-  const nlohmann::json summary = {{"frames", 3}, {"extraction_ms", {{"mean", 12.5}}}};
+  ExtractJobSummary summary;
+  summary.extractor = "surf";
+  summary.session = "1";
+  summary.frames = 3;
+  summary.mean_features = 5.0;
+  summary.extraction_ms = {12.0, 12.5, 14.0};
   cache.Store(key, dir + "/extracted.bin", summary);
-  const std::optional<nlohmann::json> restored = cache.Restore(key, dir + "/restored.bin");
+  const std::optional<ExtractJobSummary> restored = cache.Restore(key, dir + "/restored.bin");
   ASSERT_TRUE(restored.has_value());
-  EXPECT_EQ(*restored, summary);
+  EXPECT_EQ(ToJsonObject(*restored), ToJsonObject(summary));
   EXPECT_EQ(Bytes(dir + "/restored.bin"), Bytes(dir + "/extracted.bin"));
 
   // A job that extracts again writes a fresh file: the entry it was linked
@@ -165,7 +171,14 @@ TEST(SharedFeatureCacheTest, StoredEntriesRestoreAndDamagedOnesAreMisses) {
   // A summary whose frame count disagrees with the file, or a cut file: a
   // miss, and the entry is gone.
   const fs::path entry = fs::path(dir) / "cache" / key;
-  std::ofstream(entry / SharedFeatureCache::kSummaryFile) << nlohmann::json({{"frames", 4}}).dump();
+  nlohmann::json four = ToJsonObject(summary);
+  four["frames"] = 4;
+  std::ofstream(entry / SharedFeatureCache::kSummaryFile) << four.dump();
+  EXPECT_FALSE(cache.Restore(key, dir + "/x.bin").has_value());
+  EXPECT_FALSE(fs::exists(entry));
+  // A summary that is no extract job's (an older entry's, a key missing): a miss.
+  cache.Store(key, dir + "/extracted.bin", summary);
+  std::ofstream(entry / SharedFeatureCache::kSummaryFile) << nlohmann::json({{"frames", 3}}).dump();
   EXPECT_FALSE(cache.Restore(key, dir + "/x.bin").has_value());
   EXPECT_FALSE(fs::exists(entry));
   cache.Store(key, dir + "/extracted.bin", summary);
