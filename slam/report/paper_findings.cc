@@ -155,13 +155,12 @@ RuleOutcome RobustnessRule(const Tables& t, TableSide side) {
   return outcome;
 }
 
-RuleOutcome MergingRule(const Tables& t, TableSide side) {
-  RuleOutcome outcome;
-  const ReportTable* table = t.relocalization;
-  if (table == nullptr) return outcome;
+// The merged map of the most sessions (its row and session count); "" when
+// the table has none.
+std::pair<std::string, size_t> LargestMergedRow(const ReportTable& table) {
   std::string full;
   size_t full_sessions = 0;
-  for (const std::string& row : table->rows()) {
+  for (const std::string& row : table.rows()) {
     const auto spec = RowMapSpec(row);
     if (!spec) continue;
     if (spec->kind == MapKind::kMerged && spec->sessions.size() > full_sessions) {
@@ -169,6 +168,27 @@ RuleOutcome MergingRule(const Tables& t, TableSide side) {
       full_sessions = spec->sessions.size();
     }
   }
+  return {full, full_sessions};
+}
+
+// The best of the single maps of a merged map's sessions; none unless every
+// one of them has a value.
+std::optional<double> BestSingleMap(const ReportTable* table, const MapSpec& merged,
+                                    const std::string& feature, TableSide side) {
+  double best_single = -1.0;
+  for (const std::string& session : merged.sessions) {
+    const auto single = CellValue(table, session, feature, side);
+    if (!single) return std::nullopt;
+    best_single = std::max(best_single, *single);
+  }
+  return best_single;
+}
+
+RuleOutcome MergingRule(const Tables& t, TableSide side) {
+  RuleOutcome outcome;
+  const ReportTable* table = t.relocalization;
+  if (table == nullptr) return outcome;
+  const auto [full, full_sessions] = LargestMergedRow(*table);
   if (full.empty()) {
     outcome.numbers = "no multi-session map";
     return outcome;
@@ -192,16 +212,10 @@ RuleOutcome MergingRule(const Tables& t, TableSide side) {
                                                                       : spec->sessions.size();
       if (value && sessions <= full_sessions && *value > *full_pct) best = false;
       if (!value || !spec || spec->kind != MapKind::kMerged) continue;
-      double best_single = -1.0;
-      bool all = true;
-      for (const std::string& session : spec->sessions) {
-        const auto single = CellValue(table, session, feature, side);
-        if (!single) all = false;
-        if (single) best_single = std::max(best_single, *single);
-      }
-      if (!all) continue;
+      const std::optional<double> best_single = BestSingleMap(table, *spec, feature, side);
+      if (!best_single) continue;
       ++merged_checked;
-      if (*value >= best_single) ++merged_above;
+      if (*value >= *best_single) ++merged_above;
     }
     if (best) ++full_best;
     if (!reduced.empty()) {

@@ -348,6 +348,33 @@ ReportTable TimingTable(const ExperimentOptions& options, const ExperimentPlan& 
   return table;
 }
 
+// One consecutive pair's line of consecutive.csv.
+void WriteConsecutiveCsvLine(const ConsecutiveCell& cell, const LocalizationJobSummary& s,
+                             std::ostream& out) {
+  out << cell.feature << "," << cell.map_session << "," << cell.localization_session << ","
+      << cell.gap_min << "," << cell.gap_class_min << "," << s.max_gap_m << ","
+      << 100.0 * s.num_within_55cm / s.num_frames << ","
+      << 100.0 * s.num_relocalized / s.num_frames << ",";
+  if (s.num_within_55cm_bound >= 0) out << 100.0 * s.num_within_55cm_bound / s.num_frames;
+  out << "\n";
+}
+
+// The paper's gap-distance table beside the largest gap and the share
+// within 55 cm, per gap class (the tables' rows) and feature.
+void FillGapDistancePaper(const PaperReference& paper, ReportTable* max_gap,
+                          ReportTable* within) {
+  for (const std::string& row : max_gap->rows()) {
+    for (const std::string& feature : max_gap->columns()) {
+      if (auto v = paper.Value({"table_gap_distance", row, "max_gap_m"}, feature)) {
+        max_gap->SetPaper(row, feature, *v);
+      }
+      if (auto v = paper.Value({"table_gap_distance", row, "within_55cm_pct"}, feature)) {
+        within->SetPaper(row, feature, *v);
+      }
+    }
+  }
+}
+
 std::vector<ReportTable> ConsecutiveTables(const ExperimentOptions& options,
                                            const ExperimentPlan& plan,
                                            const ExperimentResults& results,
@@ -393,30 +420,14 @@ std::vector<ReportTable> ConsecutiveTables(const ExperimentOptions& options,
     } else {
       a.bound_known = false;
     }
-    out << cell.feature << "," << cell.map_session << "," << cell.localization_session << ","
-        << cell.gap_min << "," << cell.gap_class_min << "," << s.max_gap_m << ","
-        << 100.0 * s.num_within_55cm / s.num_frames << ","
-        << 100.0 * s.num_relocalized / s.num_frames << ",";
-    if (s.num_within_55cm_bound >= 0) out << 100.0 * s.num_within_55cm_bound / s.num_frames;
-    out << "\n";
+    WriteConsecutiveCsvLine(cell, s, out);
   }
   for (const auto& [key, a] : acc) {
     max_gap.SetMeasured(key.first, key.second, a.max_gap_m);
     within.SetMeasured(key.first, key.second, 100.0 * a.within / a.frames);
     if (a.bound_known) bound.SetMeasured(key.first, key.second, 100.0 * a.bound / a.frames);
   }
-  if (paper) {
-    for (const std::string& row : rows) {
-      for (const std::string& feature : options.features) {
-        if (auto v = paper->Value({"table_gap_distance", row, "max_gap_m"}, feature)) {
-          max_gap.SetPaper(row, feature, *v);
-        }
-        if (auto v = paper->Value({"table_gap_distance", row, "within_55cm_pct"}, feature)) {
-          within.SetPaper(row, feature, *v);
-        }
-      }
-    }
-  }
+  if (paper) FillGapDistancePaper(*paper, &max_gap, &within);
   *csv = out.str();
   return {max_gap, within, bound};
 }
