@@ -15,7 +15,7 @@
 #include "slam/core/check.h"
 #include "slam/core/json_reader.h"
 #include "slam/io/publish.h"
-#include "slam/io/synthetic_dataset.h"
+#include "slam/io/synthetic_marker.h"
 
 namespace duskmap {
 namespace fs = std::filesystem;
@@ -89,7 +89,7 @@ bool IsDuskmapDatasetFolder(const fs::path& path) {
   } catch (const Error&) {  // missing, not JSON, or nested too deep
     return false;
   }
-  return json.is_object() && json.contains("format") && json.at("format") == "duskmap-synthetic";
+  return json.is_object() && json.contains("format") && json.at("format") == kSyntheticFormat;
 }
 
 bool IsDuskmapResultsFolder(const fs::path& path) {

@@ -20,14 +20,11 @@
 #include <string>
 #include <vector>
 
+#include "slam/io/named_path.h"
+
 namespace duskmap {
 
-// A path a command reads or writes, with the flag (or config key) that named
-// it, for the error messages.
-struct NamedPath {
-  std::string flag;  // "--dataset", "--map", "config", ...
-  std::string path;
-};
+// NamedPath and OwnedOutput: io/named_path.h.
 
 // True when `path` is `folder` or lies inside it (after resolving symbolic
 // links and "..", for the parts that exist).
@@ -37,13 +34,6 @@ bool IsSameOrInside(const std::filesystem::path& path, const std::filesystem::pa
 // when two outputs are the same path. Empty paths are ignored.
 void CheckOutputsApartFromInputs(const std::vector<NamedPath>& outputs,
                                  const std::vector<NamedPath>& inputs);
-
-// What --overwrite may replace: a description for messages ("a duskmap map")
-// and the test that recognises it.
-struct OwnedOutput {
-  std::string what;    // "a duskmap dataset (manifest.json)"
-  std::function<bool(const std::filesystem::path&)> is_owned;
-};
 
 // Checks that `path` may be written: absent, or present with `overwrite` and
 // recognised by `owner`. Throws InputError naming the path otherwise.

@@ -20,7 +20,7 @@
 #include <ostream>
 #include <string>
 
-#include "slam/io/output_safety.h"
+#include "slam/io/named_path.h"
 
 namespace duskmap {
 

@@ -13,12 +13,10 @@
 #include <vector>
 
 #include "slam/io/dataset_reader.h"
+#include "slam/io/synthetic_marker.h"
 #include "slam/io/tum_dataset.h"
 
 namespace duskmap {
-
-inline constexpr const char* kManifestFileName = "manifest.json";
-inline constexpr const char* kSyntheticFormat = "duskmap-synthetic";
 
 struct ManifestSession {
   std::string name;        // "1".."6", "A".."F"
