@@ -1,4 +1,5 @@
-// Vocabulary::Export / Vocabulary::Import (declared in vocabulary.h).
+// Vocabulary::Export / Vocabulary::Import (declared in vocabulary.h); the
+// snapshot's own members are in vocabulary_snapshot.cc.
 #include <algorithm>
 #include <unordered_set>
 
@@ -7,32 +8,6 @@
 #include "slam/vocabulary/vocabulary.h"
 
 namespace duskmap {
-
-int VocabularySnapshot::DescriptorCols() const {
-  if (descriptors.empty()) return 0;
-  return format() == WordRowFormat::kQuantized8
-             ? descriptors.cols - static_cast<int>(WordRowBytes(WordRowFormat::kQuantized8, 0))
-             : descriptors.cols;
-}
-
-bool VocabularySnapshot::operator==(const VocabularySnapshot& other) const {
-  if (kind != other.kind || format() != other.format() || word_ids != other.word_ids ||
-      next_word_id != other.next_word_id ||
-      descriptors.rows != other.descriptors.rows || nodes.size() != other.nodes.size()) {
-    return false;
-  }
-  if (!descriptors.empty() &&
-      (descriptors.type() != other.descriptors.type() || descriptors.cols != other.descriptors.cols ||
-       cv::norm(descriptors, other.descriptors, cv::NORM_INF) != 0.0)) {
-    return false;
-  }
-  for (size_t i = 0; i < nodes.size(); ++i) {
-    const VocabularyNodeWords& a = nodes[i];
-    const VocabularyNodeWords& b = other.nodes[i];
-    if (a.node != b.node || a.num_features != b.num_features || a.word_counts != b.word_counts) return false;
-  }
-  return true;
-}
 
 std::vector<uint8_t> Vocabulary::SaveIndexState() const {
   return index_ != nullptr && index_->size() > 0 ? index_->SaveState() : std::vector<uint8_t>();
