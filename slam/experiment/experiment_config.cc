@@ -5,7 +5,7 @@
 
 #include "slam/core/check.h"
 #include "slam/core/json_fields.h"
-#include "slam/experiment/job_plan.h"
+#include "slam/experiment/session_clock.h"
 #include "slam/features/feature_options_json.h"
 #include "slam/features/feature_extractor.h"
 #include "slam/features/feature_registry.h"

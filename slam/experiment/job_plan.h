@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "slam/experiment/experiment_config.h"
+#include "slam/experiment/session_clock.h"
 
 namespace duskmap {
 
@@ -57,12 +58,6 @@ struct ExperimentPlan {
 
   const Job* FindJob(const std::string& id) const;
 };
-
-// Clock time of each session, in minutes since midnight.
-using SessionClock = std::map<std::string, int>;
-
-// Parses "HH:MM" into minutes since midnight; throws ConfigError otherwise.
-int ParseClockMinutes(const std::string& hh_mm);
 
 // Throws ConfigError when a session needed for closest-in-time maps or
 // consecutive pairs has no clock time.

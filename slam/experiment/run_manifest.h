@@ -14,6 +14,7 @@
 
 #include "slam/experiment/experiment_config.h"
 #include "slam/experiment/job_plan.h"
+#include "slam/experiment/session_clock.h"
 #include "slam/io/dataset_reader.h"
 
 namespace duskmap {
