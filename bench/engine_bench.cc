@@ -22,6 +22,7 @@
 #include "slam/engine/localizer.h"
 #include "slam/engine/mapper.h"
 #include "slam/engine/session_runs.h"
+#include "slam/features/feature_factory.h"
 #include "slam/io/synthetic_dataset.h"
 #include "slam/map/map_memory.h"
 #include "slam/synthetic/generator.h"

@@ -27,7 +27,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "bench/bench_temp_dir.h"
-#include "slam/features/feature_extractor.h"
+#include "slam/features/feature_factory.h"
 #include "slam/features/feature_options_json.h"
 #include "slam/features/h5_feature_file.h"
 #include "slam/features/superglue.h"

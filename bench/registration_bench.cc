@@ -14,7 +14,7 @@
 #include <benchmark/benchmark.h>
 #include <opencv2/core/utility.hpp>
 
-#include "slam/features/feature_extractor.h"
+#include "slam/features/feature_factory.h"
 #include "slam/registration/transform_estimation.h"
 #include "tests/registration/plane_pair.h"
 

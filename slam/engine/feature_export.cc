@@ -9,7 +9,7 @@
 
 #include "slam/core/check.h"
 #include "slam/core/timer.h"
-#include "slam/features/feature_extractor.h"
+#include "slam/features/feature_factory.h"
 #include "slam/features/h5_feature_file.h"
 #include "slam/io/publish.h"
 

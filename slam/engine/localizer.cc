@@ -7,6 +7,7 @@
 #include "slam/core/check.h"
 #include "slam/core/timer.h"
 #include "slam/engine/localization_record_json.h"
+#include "slam/features/feature_factory.h"
 #include "slam/map/map_vocabulary.h"
 #include "slam/retrieval/proximity.h"
 

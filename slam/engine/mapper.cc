@@ -5,6 +5,7 @@
 
 #include "slam/core/check.h"
 #include "slam/core/timer.h"
+#include "slam/features/feature_factory.h"
 #include "slam/features/feature_options_json.h"
 #include "slam/engine/graph_reduction.h"
 #include "slam/engine/map_optimization.h"

@@ -13,7 +13,7 @@
 #include "slam/eval/trajectory_error.h"
 #include "slam/experiment/feature_cache.h"
 #include "slam/experiment/job_results_json.h"
-#include "slam/features/feature_extractor.h"
+#include "slam/features/feature_factory.h"
 #include "slam/features/feature_registry.h"
 #include "slam/map/map_store.h"
 
@@ -85,7 +85,7 @@ EngineOptions EngineOptionsForFeature(const EngineOptions& base, const FeatureSe
   }
   const FeatureType* type = FindFeatureType(setup.extractor);
   if (setup.needs_model && type != nullptr && type->file) {
-    SLAM_THROW_IF_NOT(ConfigError, !type->file->path(options.features).empty())
+    SLAM_THROW_IF_NOT(ConfigError, !FeatureFilePath(options.features).empty())
         << "feature " << setup.label << " needs features." << type->file->key
         << " in the engine config";
   }

@@ -7,7 +7,7 @@
 #include "slam/core/json_fields.h"
 #include "slam/experiment/session_clock.h"
 #include "slam/features/feature_options_json.h"
-#include "slam/features/feature_extractor.h"
+#include "slam/features/feature_factory.h"
 #include "slam/features/feature_registry.h"
 #include "slam/io/output_safety.h"
 

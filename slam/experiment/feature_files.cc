@@ -13,7 +13,7 @@ namespace fs = std::filesystem;
 std::vector<std::string> FeatureFilesOf(const FeatureOptions& features) {
   const FeatureType* type = FindFeatureType(features.type);
   if (type == nullptr || !type->file) return {};
-  const std::string& path = type->file->path(features);
+  const std::string& path = FeatureFilePath(features);
   if (path.empty()) return {};
   std::error_code error;
   if (!type->file->folder_per_session || !fs::is_directory(path, error)) return {path};

@@ -86,9 +86,9 @@ nlohmann::json SharedFeatureCache::FileChecksumsOf(const FeatureCacheInputs& inp
   const FeatureType* type = FindFeatureType(inputs.features.type);
   std::error_code error;
   if (type != nullptr && type->file && type->file->folder_per_session &&
-      fs::is_directory(type->file->path(inputs.features), error)) {
+      fs::is_directory(FeatureFilePath(inputs.features), error)) {
     // A folder holds one "<session>.h5" per session; a session reads its own.
-    paths = {(fs::path(type->file->path(inputs.features)) / (inputs.session + ".h5")).string()};
+    paths = {(fs::path(FeatureFilePath(inputs.features)) / (inputs.session + ".h5")).string()};
   }
   nlohmann::json checksums = nlohmann::json::object();
   for (const std::string& path : paths) {

@@ -15,6 +15,7 @@
 #include <opencv2/core.hpp>
 
 #include "slam/features/feature_extractor.h"
+#include "slam/features/feature_registry.h"
 
 namespace duskmap {
 

@@ -17,7 +17,7 @@
 #include "slam/core/input_file.h"
 #include "slam/features/eval_image.h"
 #include "slam/core/timer.h"
-#include "slam/features/feature_extractor.h"
+#include "slam/features/feature_factory.h"
 
 namespace duskmap {
 namespace {

@@ -12,7 +12,6 @@
 #include "slam/core/camera.h"
 #include "slam/core/rgbd_frame.h"
 #include "slam/features/feature_options.h"
-#include "slam/features/feature_registry.h"
 #include "slam/features/frame_features.h"
 
 namespace duskmap {
@@ -82,8 +81,6 @@ void KeepStrongest(int max_count, std::vector<cv::KeyPoint>* keypoints, cv::Mat*
 // min(size, vocabulary_features) rows (Kp/MaxFeatures), a view, not a copy.
 cv::Mat VocabularyDescriptors(const FrameFeatures& features, int vocabulary_features);
 
-// Builds the extractor named by options.type with its type's factory
-// (feature_registry.h); ConfigError for an unknown type or bad options.
-std::unique_ptr<FeatureExtractor> CreateFeatureExtractor(const FeatureOptions& options);
+// CreateFeatureExtractor: feature_factory.h.
 
 }  // namespace duskmap

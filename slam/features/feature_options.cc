@@ -153,8 +153,24 @@ void FeatureOptions::Check() const {
   onnx.Check();
   h5.Check();
   const std::optional<FeatureFileSpec>& file = known->file;
-  SLAM_THROW_IF_NOT(ConfigError, !file || file->required.empty() || !file->path(*this).empty())
+  SLAM_THROW_IF_NOT(ConfigError, !file || file->required.empty() || !FeatureFilePath(*this).empty())
       << "features." << file->key << ": features of type " << type << " need " << file->required;
+}
+
+const std::string& FeatureFilePath(const FeatureOptions& options) {
+  static const std::string kNone;
+  const FeatureType* type = FindFeatureType(options.type);
+  if (type == nullptr) return kNone;
+  switch (type->id) {
+    case FeatureTypeId::kSuperPoint:
+      return options.superpoint.model_path;
+    case FeatureTypeId::kOnnx:
+      return options.onnx.model_path;
+    case FeatureTypeId::kH5:
+      return options.h5.path;
+    default:
+      return kNone;
+  }
 }
 
 const std::vector<std::string>& BuiltInFeatureTypeNames() {

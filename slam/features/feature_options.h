@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "slam/core/json_fields.h"
+#include "slam/features/feature_registry.h"
 
 namespace duskmap {
 
@@ -172,14 +173,11 @@ struct H5FeatureOptions {
   void Check() const;
 };
 
-// The default feature type's name: SURF's (feature_registry.cc).
-const std::string& DefaultFeatureTypeName();
-
 // Which extractor to build and its options. `type` is one of
 // FeatureTypeNames() (the types of feature_registry.h); only the sub-options
 // of that type are used.
 struct FeatureOptions {
-  std::string type = DefaultFeatureTypeName();
+  std::string type = DefaultFeatureTypeName();  // SURF (feature_registry.h)
   int max_features = 1000;        // Vis/MaxFeatures: kept per frame, strongest first
   int vocabulary_features = 400;  // Kp/MaxFeatures: the first rows quantized into words
   double max_depth_m = 0.0;       // 3D points beyond this depth are NaN; 0 = no limit
@@ -199,6 +197,12 @@ struct FeatureOptions {
   H5FeatureOptions h5;
   void Check() const;
 };
+
+// The path of the file that options.type reads besides the images, from the
+// option that names it (FeatureFileSpec::key: superpoint.model_path,
+// onnx.model_path, h5.path); empty for a type that reads none or an unknown
+// type.
+const std::string& FeatureFilePath(const FeatureOptions& options);
 
 // The names of FeatureTypes() (feature_registry.h), in its order.
 const std::vector<std::string>& FeatureTypeNames();

@@ -5,88 +5,42 @@
 #include <utility>
 
 #include "slam/core/check.h"
-#include "slam/features/brief.h"
-#include "slam/features/daisy.h"
-#include "slam/features/feature_extractor.h"
-#include "slam/features/freak.h"
-#include "slam/features/h5_extractor.h"
-#include "slam/features/onnx_extractor.h"
-#include "slam/features/opencv_extractors.h"
-#include "slam/features/superpoint.h"
-#include "slam/features/surf.h"
 
 namespace duskmap {
 namespace {
 
-using Extractor = std::unique_ptr<FeatureExtractor>;
-using Factory = Extractor (*)(const FeatureOptions&);
 using K = DescriptorKind;
-using O = FeatureOptions;
 
 // A detector that needs no file, with its one column, matched by NNDR.
-FeatureType Detector(FeatureTypeId id, const char* name, const char* code, DescriptorKind kind,
-                     Factory create) {
-  return FeatureType{id, name, {{code, "nndr"}}, kind, std::nullopt, create};
+FeatureType Detector(FeatureTypeId id, const char* name, const char* code, DescriptorKind kind) {
+  return FeatureType{id, name, {{code, "nndr"}}, kind, std::nullopt};
 }
 
 // A type that reads a file its options name (`key` under "features.").
 FeatureType FileType(FeatureTypeId id, const char* name, std::vector<FeatureColumn> columns,
-                     std::optional<DescriptorKind> kind, FeatureFileSpec file, Factory create) {
-  return FeatureType{id, name, std::move(columns), kind, std::move(file), create};
+                     std::optional<DescriptorKind> kind, FeatureFileSpec file) {
+  return FeatureType{id, name, std::move(columns), kind, std::move(file)};
 }
 
 std::vector<FeatureType> Declare() {
   std::vector<FeatureType> types = {
-      Detector(FeatureTypeId::kSurf, "surf", "SU", K::kFloat, [](const O& o) -> Extractor {
-        return std::make_unique<SurfExtractor>(o.surf, o.max_features, o.max_depth_m);
-      }),
-      Detector(FeatureTypeId::kSift, "sift", "SI", K::kFloat, [](const O& o) {
-        return CreateSiftExtractor(o.sift, o.max_features, o.max_depth_m);
-      }),
-      Detector(FeatureTypeId::kBrief, "brief", "BF", K::kBinary, [](const O& o) -> Extractor {
-        return std::make_unique<BriefExtractor>(o.brief, o.gftt, o.max_features, o.max_depth_m);
-      }),
-      Detector(FeatureTypeId::kBrisk, "brisk", "BK", K::kBinary, [](const O& o) {
-        return CreateBriskExtractor(o.brisk, o.max_features, o.max_depth_m);
-      }),
-      Detector(FeatureTypeId::kKaze, "kaze", "KA", K::kFloat, [](const O& o) {
-        return CreateKazeExtractor(o.kaze, o.max_features, o.max_depth_m);
-      }),
-      Detector(FeatureTypeId::kDaisy, "daisy", "DY", K::kFloat, [](const O& o) -> Extractor {
-        return std::make_unique<DaisyExtractor>(o.daisy, o.surf, o.max_features, o.max_depth_m);
-      }),
-      Detector(FeatureTypeId::kOrb, "orb", "OR", K::kBinary, [](const O& o) {
-        return CreateOrbExtractor(o.orb, o.max_features, o.max_depth_m);
-      }),
-      Detector(FeatureTypeId::kAkaze, "akaze", "AK", K::kBinary, [](const O& o) {
-        return CreateAkazeExtractor(o.akaze, o.max_features, o.max_depth_m);
-      }),
-      Detector(FeatureTypeId::kFreak, "freak", "FR", K::kBinary, [](const O& o) -> Extractor {
-        return std::make_unique<FreakExtractor>(o.freak, o.gftt, o.fast, o.max_features,
-                                                o.max_depth_m);
-      }),
+      Detector(FeatureTypeId::kSurf, "surf", "SU", K::kFloat),
+      Detector(FeatureTypeId::kSift, "sift", "SI", K::kFloat),
+      Detector(FeatureTypeId::kBrief, "brief", "BF", K::kBinary),
+      Detector(FeatureTypeId::kBrisk, "brisk", "BK", K::kBinary),
+      Detector(FeatureTypeId::kKaze, "kaze", "KA", K::kFloat),
+      Detector(FeatureTypeId::kDaisy, "daisy", "DY", K::kFloat),
+      Detector(FeatureTypeId::kOrb, "orb", "OR", K::kBinary),
+      Detector(FeatureTypeId::kAkaze, "akaze", "AK", K::kBinary),
+      Detector(FeatureTypeId::kFreak, "freak", "FR", K::kBinary),
       // SP and SG: the same SuperPoint features, matched by NNDR or by SuperGlue.
       FileType(FeatureTypeId::kSuperPoint, "superpoint", {{"SP", "nndr"}, {"SG", "superglue"}},
-               K::kFloat,
-               {[](const O& o) -> const std::string& { return o.superpoint.model_path; },
-                "superpoint.model_path", "", false},
-               [](const O& o) {
-                 return CreateSuperPointExtractor(o.superpoint, o.max_features, o.max_depth_m);
-               }),
+               K::kFloat, {"superpoint.model_path", "", false}),
       // The columns of these two an experiment config declares, with codes of its own.
       FileType(FeatureTypeId::kOnnx, "onnx", {}, K::kFloat,
-               {[](const O& o) -> const std::string& { return o.onnx.model_path; },
-                "onnx.model_path", "the model's .onnx file", false},
-               [](const O& o) -> Extractor {
-                 return std::make_unique<OnnxFeatureExtractor>(o.onnx, o.max_features,
-                                                               o.max_depth_m);
-               }),
+               {"onnx.model_path", "the model's .onnx file", false}),
       FileType(FeatureTypeId::kH5, "h5", {}, std::nullopt,
-               {[](const O& o) -> const std::string& { return o.h5.path; }, "h5.path",
-                "the .h5 file (or folder of <session>.h5)", true},
-               [](const O& o) -> Extractor {
-                 return std::make_unique<H5FeatureExtractor>(o.h5, o.max_features, o.max_depth_m);
-               }),
+               {"h5.path", "the .h5 file (or folder of <session>.h5)", true}),
   };
   for (size_t i = 0; i < types.size(); ++i) {
     SLAM_CHECK_MSG(static_cast<size_t>(types[i].id) == i, "feature types out of FeatureTypeId order");
@@ -95,12 +49,6 @@ std::vector<FeatureType> Declare() {
 }
 
 }  // namespace
-
-FeatureOptions FeatureType::Defaults() const {
-  FeatureOptions options;
-  options.type = name;
-  return options;
-}
 
 const std::vector<FeatureType>& FeatureTypes() {
   static const std::vector<FeatureType> kTypes = Declare();
@@ -150,11 +98,6 @@ std::string KnownFeatureColumnCodes() {
     for (const FeatureColumn& column : type.columns) known += (known.empty() ? "" : ", ") + column.code;
   }
   return known;
-}
-
-std::unique_ptr<FeatureExtractor> CreateFeatureExtractor(const FeatureOptions& options) {
-  options.Check();  // the type is known
-  return FindFeatureType(options.type)->create(options);
 }
 
 }  // namespace duskmap

@@ -1,25 +1,24 @@
 // The feature types, each declared once (feature_registry.cc) with what the
 // rest of duskmap asks of a type: its name (FeatureOptions::type, the engine
 // config's features.type, `features eval --types`), the paper's columns it
-// gives (two-letter code and matcher), its descriptors, the file it reads
-// besides the images, and its factory. Its options are its struct in
-// FeatureOptions with the paper's defaults (feature_options.h). The factory
-// (CreateFeatureExtractor), the experiment config's known columns, the
-// engine's checks and the feature caches take types from here: adding a type
-// is one entry (docs/features.md).
+// gives (two-letter code and matcher), its descriptors and the file it reads
+// besides the images. Its options are its struct in FeatureOptions with the
+// paper's defaults (feature_options.h, which also says which option names a
+// type's file, FeatureFilePath); its extractor is built by
+// CreateFeatureExtractor (feature_factory.h). The options' check, the
+// factory, the experiment config's known columns, the engine's checks and
+// the feature caches take types from here: adding a type is one entry here,
+// one case in the factory (docs/features.md). The registry knows no options
+// and no extractor, so that both can take their names from it.
 #pragma once
 
-#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "slam/features/feature_options.h"
 #include "slam/features/frame_features.h"
 
 namespace duskmap {
-
-class FeatureExtractor;
 
 // For code that means one type (an extractor's name, SuperGlue's features).
 enum class FeatureTypeId { kSurf, kSift, kBrief, kBrisk, kKaze, kDaisy, kOrb, kAkaze, kFreak,
@@ -33,8 +32,9 @@ struct FeatureColumn {
 
 // The file a type reads besides the images: a model or features.
 struct FeatureFileSpec {
-  const std::string& (*path)(const FeatureOptions&);  // where its options name it
-  std::string key;  // that option under "features.": "onnx.model_path"
+  // The option that names it, under "features.": "onnx.model_path"
+  // (FeatureFilePath in feature_options.h reads it).
+  std::string key;
   // FeatureOptions::Check refuses an empty path with "features.<key>:
   // features of type <name> need <required>"; empty: not checked there (a
   // column of the type says which engine option it needs instead).
@@ -53,11 +53,8 @@ struct FeatureType {
   // (h5's descriptor_kind).
   std::optional<DescriptorKind> descriptors;
   std::optional<FeatureFileSpec> file;
-  std::unique_ptr<FeatureExtractor> (*create)(const FeatureOptions&);
 
   bool DeclaredByConfig() const { return columns.empty(); }
-  // The default options of this type: FeatureOptions' defaults with `type`.
-  FeatureOptions Defaults() const;
 };
 
 // Every type, in the order the CLI lists them: the detectors that need no
@@ -66,6 +63,8 @@ struct FeatureType {
 const std::vector<FeatureType>& FeatureTypes();
 const FeatureType& FeatureTypeOf(FeatureTypeId id);
 const std::string& FeatureTypeName(FeatureTypeId id);
+// The default feature type's name (FeatureOptions::type): SURF's.
+const std::string& DefaultFeatureTypeName();
 // The type named `name` (exact, lower case); nullptr when there is none.
 const FeatureType* FindFeatureType(const std::string& name);
 // The type that gives the built-in column `code` ("SU"); nullptr when none.

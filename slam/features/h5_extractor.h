@@ -12,6 +12,7 @@
 #include <string>
 
 #include "slam/features/feature_extractor.h"
+#include "slam/features/feature_registry.h"
 #include "slam/features/h5_feature_file.h"
 
 namespace duskmap {

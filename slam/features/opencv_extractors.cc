@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "slam/core/check.h"
+#include "slam/features/feature_registry.h"
 
 namespace duskmap {
 

@@ -9,7 +9,7 @@
 #include "slam/core/check.h"
 #include "slam/features/eval_image.h"
 #include "slam/core/timer.h"
-#include "slam/features/feature_extractor.h"
+#include "slam/features/feature_factory.h"
 
 namespace duskmap {
 namespace fs = std::filesystem;

@@ -12,6 +12,7 @@
 #include <opencv2/core.hpp>
 
 #include "slam/features/feature_extractor.h"
+#include "slam/features/feature_registry.h"
 #include "slam/features/integral_image.h"
 
 namespace duskmap {

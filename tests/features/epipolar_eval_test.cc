@@ -9,7 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "slam/core/check.h"
-#include "slam/features/feature_extractor.h"
+#include "slam/features/feature_factory.h"
 #include "slam/features/h5_feature_file.h"
 #include "tests/features/test_images.h"
 #include "tests/testing/error_of.h"

@@ -1,6 +1,6 @@
 // The common Extract() behaviour: input conversion, bad input, depth and 3D
 // points, limiting.
-#include "slam/features/feature_extractor.h"
+#include "slam/features/feature_factory.h"
 
 #include <cmath>
 #include <limits>

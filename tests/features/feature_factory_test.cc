@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "slam/features/feature_extractor.h"
+#include "slam/features/feature_factory.h"
 #include "slam/features/homography_metrics.h"
 #include "tests/features/test_images.h"
 

@@ -1,4 +1,4 @@
-// The feature registry: every type once, with a unique name and codes, a
+// The feature registry: every type once, with a unique name and codes, the
 // factory that builds it, and the lookups the config, engine and caches use.
 #include "slam/features/feature_registry.h"
 
@@ -7,11 +7,19 @@
 
 #include <gtest/gtest.h>
 
-#include "slam/features/feature_extractor.h"
+#include "slam/features/feature_factory.h"
+#include "slam/features/feature_options_json.h"
 #include "tests/testing/error_of.h"
 
 namespace duskmap {
 namespace {
+
+// FeatureOptions' defaults with `type`.
+FeatureOptions DefaultsOf(const FeatureType& type) {
+  FeatureOptions options;
+  options.type = type.name;
+  return options;
+}
 
 TEST(FeatureRegistry, EveryTypeHasAUniqueNameAndUniqueCodes) {
   std::set<std::string> names, codes;
@@ -46,7 +54,7 @@ TEST(FeatureRegistry, TheFactoryBuildsEveryTypeThatNeedsNoFile) {
   int built = 0;
   for (const FeatureType& type : FeatureTypes()) {
     if (type.file) continue;
-    const FeatureOptions options = type.Defaults();
+    const FeatureOptions options = DefaultsOf(type);
     EXPECT_EQ(options.type, type.name);
     const std::unique_ptr<FeatureExtractor> extractor = CreateFeatureExtractor(options);
     ASSERT_NE(extractor, nullptr) << type.name;
@@ -63,10 +71,15 @@ TEST(FeatureRegistry, TheFactoryBuildsEveryTypeThatNeedsNoFile) {
 TEST(FeatureRegistry, TypesThatReadAFileNameTheOptionWithoutIt) {
   for (const FeatureType& type : FeatureTypes()) {
     if (!type.file) continue;
-    const FeatureOptions options = type.Defaults();
-    EXPECT_TRUE(type.file->path(options).empty()) << type.name;
+    const FeatureOptions options = DefaultsOf(type);
+    EXPECT_TRUE(FeatureFilePath(options).empty()) << type.name;
     const std::string error = testing::ErrorOf([&] { CreateFeatureExtractor(options); });
     EXPECT_NE(error.find("features." + type.file->key), std::string::npos) << error;
+    // FeatureFilePath reads the option the registry names: set at its key, it is the path.
+    const size_t dot = type.file->key.find('.');
+    const nlohmann::json json = {{"type", type.name},
+                                 {type.file->key.substr(0, dot), {{type.file->key.substr(dot + 1), "file"}}}};
+    EXPECT_EQ(FeatureFilePath(ReadJsonOptions<FeatureOptions>(json, "features")), "file") << type.name;
   }
 }
 

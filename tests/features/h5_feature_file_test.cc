@@ -13,7 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "slam/core/check.h"
-#include "slam/features/feature_extractor.h"
+#include "slam/features/feature_factory.h"
 #include "slam/features/h5_extractor.h"
 #include "tests/features/test_images.h"
 #include "tests/testing/error_of.h"

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "slam/features/feature_factory.h"
 #include "tests/features/onnx_test_models.h"
 #include "tests/features/test_images.h"
 #include "tests/testing/error_of.h"

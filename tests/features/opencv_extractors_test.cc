@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/features2d.hpp>
 
-#include "slam/features/feature_extractor.h"
+#include "slam/features/feature_factory.h"
 #include "slam/features/opencv_extractors.h"
 #include "tests/features/test_images.h"
 

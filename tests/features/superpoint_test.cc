@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "slam/features/feature_factory.h"
 #include "slam/features/onnx_extractor.h"
 #include "tests/features/onnx_test_models.h"
 #include "tests/features/test_images.h"

@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/core/utility.hpp>
 
-#include "slam/features/feature_extractor.h"
+#include "slam/features/feature_factory.h"
 #include "slam/registration/transform_estimation.h"
 #include "tests/registration/plane_pair.h"
 #include "tests/testing/rigid3d_near.h"

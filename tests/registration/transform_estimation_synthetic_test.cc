@@ -15,7 +15,7 @@
 #include <opencv2/core/utility.hpp>
 
 #include "slam/core/random.h"
-#include "slam/features/feature_extractor.h"
+#include "slam/features/feature_factory.h"
 #include "slam/features/feature_options.h"
 #include "slam/registration/transform_estimation.h"
 #include "slam/synthetic/generator_config.h"

@@ -13,7 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "slam/core/random.h"
-#include "slam/features/feature_extractor.h"
+#include "slam/features/feature_factory.h"
 #include "slam/features/feature_options.h"
 #include "slam/retrieval/loop_closure_detector.h"
 #include "slam/synthetic/generator_config.h"
