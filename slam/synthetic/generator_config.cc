@@ -40,6 +40,11 @@ void GeneratorConfig::Check() const {
   }
 }
 
+void ApplyGeneratorModel(const std::string& name, GeneratorConfig* config, const std::string& where) {
+  ApplyModelValues(name, {config->scene, config->lighting, config->camera}, where);
+  config->model = name;
+}
+
 std::vector<std::pair<std::string, std::string>> MovedGeneratorKeys() {
   return {{"camera.ae_target", "camera.exposure.target"},
           {"camera.ae_speed", "camera.exposure.speed"},

@@ -26,6 +26,13 @@ struct SessionSpec {
   std::string role = "mapping";  // "mapping" or "localization"
 };
 
+struct GeneratorConfig;
+
+// Sets the values model `name` decides (generator_models.h) on `config`, and
+// config->model; throws ConfigError "<where>: unknown model ..." naming the
+// known ones.
+void ApplyGeneratorModel(const std::string& name, GeneratorConfig* config, const std::string& where = "model");
+
 // The building blocks' options (ApartmentOptions, LightingOptions,
 // CameraModelOptions, ...) default to their features off, which their unit
 // tests use; GeneratorConfig's constructor sets the default model on them.

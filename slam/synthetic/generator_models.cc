@@ -3,7 +3,6 @@
 #include <sstream>
 
 #include "slam/core/check.h"
-#include "slam/synthetic/generator_config.h"
 
 namespace duskmap {
 namespace {
@@ -13,69 +12,69 @@ namespace {
 
 // The box apartment of 2026-12-02: box furniture, procedural materials, the
 // sun through the light map, the camera without its image processor.
-void Boxes20261202(GeneratorConfig* c) {
-  c->scene.box_furniture = true;
-  c->scene.furniture.pieces.clear();
-  c->scene.lamps.intensity_scale = 1.6;
-  c->lighting.horizon_elevation_deg = 1.5;
-  c->lighting.ambient_fraction = 0.35;
-  c->lighting.window_view_obstructed = false;
-  c->lighting.glass_transmission = 0.75;
-  c->lighting.sun_per_texel = false;
-  c->lighting.mesh_sun_per_sample = false;
-  c->camera.exposure.motion_blur_scale = 1.0;
-  c->camera.image_processor.tone_contrast = 0.12;
-  c->camera.image_processor.noise_reduction = 0.0;
-  c->camera.image_processor.sharpen_amount = 0.0;
-  c->camera.image_processor.sharpen_sigma_px = 1.0;
-  c->camera.image_processor.sharpen_threshold_levels = 0.0;
+void Boxes20261202(const GeneratorModelParts& c) {
+  c.scene.box_furniture = true;
+  c.scene.furniture.pieces.clear();
+  c.scene.lamps.intensity_scale = 1.6;
+  c.lighting.horizon_elevation_deg = 1.5;
+  c.lighting.ambient_fraction = 0.35;
+  c.lighting.window_view_obstructed = false;
+  c.lighting.glass_transmission = 0.75;
+  c.lighting.sun_per_texel = false;
+  c.lighting.mesh_sun_per_sample = false;
+  c.camera.exposure.motion_blur_scale = 1.0;
+  c.camera.image_processor.tone_contrast = 0.12;
+  c.camera.image_processor.noise_reduction = 0.0;
+  c.camera.image_processor.sharpen_amount = 0.0;
+  c.camera.image_processor.sharpen_sigma_px = 1.0;
+  c.camera.image_processor.sharpen_threshold_levels = 0.0;
 }
 
 // Calibration run 10: the catalog furniture in place of the boxes, lamps
 // x3.2, buildings opposite that hide the sun below 14 degrees, a room's
 // interreflection 0.8, a phone's steep tone curve.
-void Run10(GeneratorConfig* c) {
+void Run10(const GeneratorModelParts& c) {
   Boxes20261202(c);
-  c->scene.box_furniture = false;
-  c->scene.furniture.pieces = DefaultFurniturePieces();
-  c->scene.lamps.intensity_scale = 3.2;
-  c->lighting.horizon_elevation_deg = 14.0;
-  c->lighting.ambient_fraction = 0.8;
-  c->camera.image_processor.tone_contrast = 0.5;
+  c.scene.box_furniture = false;
+  c.scene.furniture.pieces = DefaultFurniturePieces();
+  c.scene.lamps.intensity_scale = 3.2;
+  c.lighting.horizon_elevation_deg = 14.0;
+  c.lighting.ambient_fraction = 0.8;
+  c.camera.image_processor.tone_contrast = 0.5;
 }
 
 // Run 14: the windows see the facades opposite and the ground.
-void Run14(GeneratorConfig* c) {
+void Run14(const GeneratorModelParts& c) {
   Run10(c);
-  c->lighting.window_view_obstructed = true;
+  c.lighting.window_view_obstructed = true;
 }
 
 // Run 17: the light a real window assembly lets through.
-void Run17(GeneratorConfig* c) {
+void Run17(const GeneratorModelParts& c) {
   Run14(c);
-  c->lighting.glass_transmission = 0.35;
+  c.lighting.glass_transmission = 0.35;
 }
 
 // Run 22: the sun per texel; the image processor's noise reduction, then
 // local contrast.
-void Run22(GeneratorConfig* c) {
+void Run22(const GeneratorModelParts& c) {
   Run17(c);
-  c->lighting.sun_per_texel = true;
-  c->camera.image_processor.noise_reduction = 1.5;
-  c->camera.image_processor.sharpen_amount = 0.5;
-  c->camera.image_processor.sharpen_sigma_px = 5.0;
-  c->camera.image_processor.sharpen_threshold_levels = 2.0;
+  c.lighting.sun_per_texel = true;
+  c.camera.image_processor.noise_reduction = 1.5;
+  c.camera.image_processor.sharpen_amount = 0.5;
+  c.camera.image_processor.sharpen_sigma_px = 5.0;
+  c.camera.image_processor.sharpen_threshold_levels = 2.0;
 }
 
 // Run 23: the sun per pixel where a patch's edge crosses a triangle.
-void Run23(GeneratorConfig* c) {
+void Run23(const GeneratorModelParts& c) {
   Run22(c);
-  c->lighting.mesh_sun_per_sample = true;
+  c.lighting.mesh_sun_per_sample = true;
 }
 
 struct Model {
   const char* name;
-  void (*apply)(GeneratorConfig*);
+  void (*apply)(const GeneratorModelParts&);
 };
 
 constexpr Model kModels[] = {{"boxes-2026-12-02", Boxes20261202}, {"run10-2026-12-05", Run10},
@@ -99,12 +98,11 @@ void CheckGeneratorModel(const std::string& name, const std::string& where) {
   SLAM_THROW(ConfigError) << where << ": unknown model '" << name << "' (known: " << known.str() << ")";
 }
 
-void ApplyGeneratorModel(const std::string& name, GeneratorConfig* config, const std::string& where) {
+void ApplyModelValues(const std::string& name, const GeneratorModelParts& parts, const std::string& where) {
   CheckGeneratorModel(name, where);
   for (const Model& m : kModels) {
-    if (name == m.name) m.apply(config);
+    if (name == m.name) m.apply(parts);
   }
-  config->model = name;
 }
 
 std::vector<FurniturePiece> DefaultFurniturePieces() {

@@ -18,11 +18,12 @@
 #include <string>
 #include <vector>
 
+#include "slam/synthetic/light/lighting.h"
+#include "slam/synthetic/scene/apartment.h"
 #include "slam/synthetic/scene/furniture_layout.h"
+#include "slam/synthetic/sensor/camera_model.h"
 
 namespace duskmap {
-
-struct GeneratorConfig;
 
 inline constexpr const char* kDefaultGeneratorModel = "run23-2026-12-06";
 
@@ -33,9 +34,17 @@ std::vector<std::string> GeneratorModelNames();
 // is a model's.
 void CheckGeneratorModel(const std::string& name, const std::string& where);
 
-// Sets every setting a model decides to that model's value (the rest of
-// `config` is left alone) and config->model; throws as CheckGeneratorModel.
-void ApplyGeneratorModel(const std::string& name, GeneratorConfig* config, const std::string& where = "model");
+// The options whose values a model decides (GeneratorConfig's; the config
+// applies a model through ApplyGeneratorModel, generator_config.h).
+struct GeneratorModelParts {
+  ApartmentOptions& scene;
+  LightingOptions& lighting;
+  CameraModelOptions& camera;
+};
+
+// Sets every value a model decides to that model's (the rest of the parts
+// is left alone); throws as CheckGeneratorModel.
+void ApplyModelValues(const std::string& name, const GeneratorModelParts& parts, const std::string& where);
 
 // The furnished models' arrangement: 38 pieces of sweethome3d-furniture's
 // BlendSwap catalog in the four rooms (calibration runs 6 and 10).
