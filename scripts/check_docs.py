@@ -16,6 +16,9 @@
    is titled after configs/paper_matrix.json, and no committed result under
    results/ holds an absolute path of a machine (a JSON string, or a CSV or
    markdown field, starting with "/").
+5. The includes of slam/ follow docs/architecture.md's module table and
+   synthetic/'s sub-module order, with no cycle between units
+   (scripts/check_includes.py).
 
 Usage: check_docs.py [BUILD_DIR]     exit 1 with one line per problem
 """
@@ -24,6 +27,8 @@ import os
 import re
 import subprocess
 import sys
+
+import check_includes
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DOCS = ["README.md"] + sorted(os.path.join("docs", f) for f in os.listdir(os.path.join(ROOT, "docs"))
@@ -124,6 +129,7 @@ def main():
     if "rtabmap_algorithms.md" not in architecture:
         problems.append("docs/architecture.md: does not say where the spec cited as \"spec §\" lives")
     problems += results_problems()
+    problems += check_includes.problems()
     for problem in problems:
         print(problem)
     return 1 if problems else 0

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Checks that the includes of slam/ point one way.
+"""Checks that the includes of slam/ point one way (run by scripts/check_docs.py).
 
 A unit is a header with its source and its JSON codec: slam/io/publish.h,
 slam/io/publish.cc and slam/io/publish_json.h are the unit slam/io/publish.
