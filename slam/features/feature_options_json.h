@@ -13,6 +13,7 @@
 #include "slam/features/binary_distance.h"
 #include "slam/features/descriptor_quantization.h"
 #include "slam/features/feature_options.h"
+#include "slam/features/feature_registry.h"
 #include "slam/features/matcher_options.h"
 
 namespace duskmap {
@@ -203,26 +204,29 @@ struct JsonCodec<H5FeatureOptions> {
 
 template <>
 struct JsonCodec<FeatureOptions> {
+  // Each type's options sit under its registered name (feature_registry.h), the one spelling.
+  static const char* TypeKey(FeatureTypeId id) { return FeatureTypeName(id).c_str(); }
+
   template <typename F, typename O>
   static void Visit(F& f, O& o) {
     f("type", o.type);
     f("max_features", o.max_features);
     f("vocabulary_features", o.vocabulary_features);
     f("max_depth_m", o.max_depth_m);
-    f("surf", o.surf);
-    f("sift", o.sift);
-    f("orb", o.orb);
-    f("brisk", o.brisk);
-    f("kaze", o.kaze);
-    f("akaze", o.akaze);
+    f(TypeKey(FeatureTypeId::kSurf), o.surf);
+    f(TypeKey(FeatureTypeId::kSift), o.sift);
+    f(TypeKey(FeatureTypeId::kOrb), o.orb);
+    f(TypeKey(FeatureTypeId::kBrisk), o.brisk);
+    f(TypeKey(FeatureTypeId::kKaze), o.kaze);
+    f(TypeKey(FeatureTypeId::kAkaze), o.akaze);
     f("gftt", o.gftt);
     f("fast", o.fast);
-    f("brief", o.brief);
-    f("daisy", o.daisy);
-    f("freak", o.freak);
-    f("superpoint", o.superpoint);
-    f("onnx", o.onnx);
-    f("h5", o.h5);
+    f(TypeKey(FeatureTypeId::kBrief), o.brief);
+    f(TypeKey(FeatureTypeId::kDaisy), o.daisy);
+    f(TypeKey(FeatureTypeId::kFreak), o.freak);
+    f(TypeKey(FeatureTypeId::kSuperPoint), o.superpoint);
+    f(TypeKey(FeatureTypeId::kOnnx), o.onnx);
+    f(TypeKey(FeatureTypeId::kH5), o.h5);
   }
 };
 
