@@ -1,4 +1,4 @@
-#include "slam/features/epipolar_eval.h"
+#include "slam/features/eval/epipolar_eval.h"
 
 #include <cmath>
 #include <filesystem>

@@ -1,4 +1,4 @@
-#include "slam/features/eval_image.h"
+#include "slam/features/eval/eval_image.h"
 
 #include <filesystem>
 #include <fstream>

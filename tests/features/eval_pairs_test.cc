@@ -1,4 +1,4 @@
-#include "slam/features/eval_pairs.h"
+#include "slam/features/eval/eval_pairs.h"
 
 #include <filesystem>
 #include <fstream>

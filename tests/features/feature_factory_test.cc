@@ -5,8 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "slam/features/eval/homography_metrics.h"
 #include "slam/features/feature_factory.h"
-#include "slam/features/homography_metrics.h"
 #include "tests/features/test_images.h"
 
 namespace duskmap {

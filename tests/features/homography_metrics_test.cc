@@ -1,4 +1,4 @@
-#include "slam/features/homography_metrics.h"
+#include "slam/features/eval/homography_metrics.h"
 
 #include <gtest/gtest.h>
 

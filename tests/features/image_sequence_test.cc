@@ -1,4 +1,4 @@
-#include "slam/features/image_sequence.h"
+#include "slam/features/eval/image_sequence.h"
 
 #include <filesystem>
 #include <fstream>

@@ -1,4 +1,4 @@
-#include "slam/features/sequence_eval.h"
+#include "slam/features/eval/sequence_eval.h"
 
 #include <filesystem>
 #include <fstream>

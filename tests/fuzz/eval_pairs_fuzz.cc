@@ -1,5 +1,5 @@
 // libFuzzer target: the pair selection of `duskmap features eval`
-// (slam/features/eval_pairs.h) and how the sequence layouts apply it
+// (slam/features/eval/eval_pairs.h) and how the sequence layouts apply it
 // (SelectSequencePairs, image_sequence.h).
 //   byte 0: bit 0 set: the rest is a `--pairs` spec (ParsePairList), else the
 //           text of a `--pairs-file` list (ParsePairListText, "fuzz.txt").
@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "slam/core/check.h"
-#include "slam/features/eval_pairs.h"
-#include "slam/features/image_sequence.h"
+#include "slam/features/eval/eval_pairs.h"
+#include "slam/features/eval/image_sequence.h"
 
 namespace {
 

@@ -13,7 +13,7 @@
 #include <opencv2/core.hpp>
 
 #include "slam/core/check.h"
-#include "slam/features/image_sequence.h"
+#include "slam/features/eval/image_sequence.h"
 
 namespace {
 

@@ -32,8 +32,8 @@
 #include <vector>
 
 #include "slam/core/check.h"
-#include "slam/features/eval_pairs.h"
-#include "slam/features/image_sequence.h"
+#include "slam/features/eval/eval_pairs.h"
+#include "slam/features/eval/image_sequence.h"
 #include "tests/fuzz/fuzz_files.h"
 
 namespace {

@@ -1,4 +1,4 @@
-#include "slam/features/sequence_eval.h"
+#include "slam/features/eval/sequence_eval.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "slam/core/check.h"
-#include "slam/features/eval_image.h"
+#include "slam/features/eval/eval_image.h"
 #include "slam/core/timer.h"
 #include "slam/features/feature_factory.h"
 

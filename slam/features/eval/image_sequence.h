@@ -16,7 +16,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "slam/features/eval_pairs.h"
+#include "slam/features/eval/eval_pairs.h"
 
 namespace duskmap {
 

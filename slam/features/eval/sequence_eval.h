@@ -11,9 +11,9 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 
+#include "slam/features/eval/homography_metrics.h"
+#include "slam/features/eval/image_sequence.h"
 #include "slam/features/feature_options.h"
-#include "slam/features/homography_metrics.h"
-#include "slam/features/image_sequence.h"
 
 namespace duskmap {
 

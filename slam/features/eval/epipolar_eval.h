@@ -17,7 +17,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 
-#include "slam/features/eval_pairs.h"
+#include "slam/features/eval/eval_pairs.h"
 #include "slam/features/feature_options.h"
 
 namespace duskmap {

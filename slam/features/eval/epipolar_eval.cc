@@ -1,4 +1,4 @@
-#include "slam/features/epipolar_eval.h"
+#include "slam/features/eval/epipolar_eval.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,7 +15,7 @@
 
 #include "slam/core/check.h"
 #include "slam/core/input_file.h"
-#include "slam/features/eval_image.h"
+#include "slam/features/eval/eval_image.h"
 #include "slam/core/timer.h"
 #include "slam/features/feature_factory.h"
 
