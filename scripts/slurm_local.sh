@@ -15,9 +15,13 @@
 # (default 16817 and 16818, not Slurm's 6817/6818, so that a site's daemons on
 # this machine are left alone) can be set with DUSKMAP_SLURM_PORTS="CTLD SLURMD".
 # systemd is not needed: each daemon is started here and stopped by its PID.
-# Running `up` on a running cluster or `down` on a stopped one does nothing.
+# Running `up` on a running cluster (its slurm.conf is kept, so a different
+# DUSKMAP_SLURM_PORTS does not apply to it) or `down` on a stopped one does nothing.
+# Both need root. A daemon that has exited but is not reaped yet (a zombie) counts as stopped.
 # When the node is not idle within DUSKMAP_SLURM_UP_TIMEOUT_S (default 60) s,
-# `up` stops what it started, prints one line naming the log to read, exits 1.
+# `up` stops what it started, prints one line naming the log to read, exits 1
+# (a cluster that was already up is left running). `down` gives up with one
+# line and exit 1 on a daemon still there 5 s after SIGKILL.
 set -euo pipefail
 
 usage() { echo "usage: $0 up|down|env [STATE_DIR]" >&2; exit 2; }
@@ -32,27 +36,43 @@ export SLURM_CONF="$conf"
 
 fail() { echo "$0: $*" >&2; exit 1; }
 
+# Whether process PID has exited: gone, or a zombie (or dead) that its parent
+# has not reaped yet.
+exited() {
+  local stat
+  stat=$(cat "/proc/$1/stat" 2>/dev/null) || return 0
+  stat=${stat##*) }  # the state follows the command name, which may hold ") "
+  case "${stat%% *}" in Z|X|'') return 0;; esac
+  return 1
+}
+
 # The PID in FILE when that process is alive and runs PROGRAM, else nothing.
 live_pid() {
   local file=$1 program=$2 pid
   [ -f "$file" ] || return 0
   pid=$(tr -dc '0-9' <"$file")
-  [ -n "$pid" ] && [ "$(cat "/proc/$pid/comm" 2>/dev/null)" = "$program" ] && echo "$pid"
+  [ -n "$pid" ] && [ "$(cat "/proc/$pid/comm" 2>/dev/null)" = "$program" ] && ! exited "$pid" && echo "$pid"
   return 0
 }
 
-# Stops the daemon whose PID is in FILE (SIGTERM, then SIGKILL after 20 s) and waits for it.
+# Stops the daemon whose PID is in FILE (SIGTERM, then SIGKILL after 20 s) and
+# waits for it; one line on stderr and status 1 when it outlives SIGKILL by 5 s.
 stop_daemon() {
   local file=$1 program=$2 pid waited=0
   pid=$(live_pid "$file" "$program")
   if [ -n "$pid" ]; then
     kill -TERM "$pid" 2>/dev/null || true
-    while kill -0 "$pid" 2>/dev/null; do
-      if [ $waited -ge 200 ]; then kill -KILL "$pid" 2>/dev/null || true; fi
+    until exited "$pid"; do
+      if [ $waited -eq 200 ]; then kill -KILL "$pid" 2>/dev/null || true; fi
+      if [ $waited -ge 250 ]; then
+        echo "$0: $program (pid $pid) did not stop, not even on SIGKILL" >&2
+        return 1
+      fi
       sleep 0.1
       waited=$((waited + 1))
     done
     echo "stopped $program (pid $pid)"
+    stopped_any=1
   fi
   rm -f "$file"
 }
@@ -139,9 +159,11 @@ stop_all() {
       done
     fi
   fi
-  stop_daemon "$state/slurmd.pid" slurmd
-  stop_daemon "$state/slurmctld.pid" slurmctld
-  stop_daemon "$state/munge/munged.pid" munged
+  local rc=0
+  stop_daemon "$state/slurmd.pid" slurmd || rc=1
+  stop_daemon "$state/slurmctld.pid" slurmctld || rc=1
+  stop_daemon "$state/munge/munged.pid" munged || rc=1
+  return $rc
 }
 
 # The first daemon that is not running and its log ("" when all run).
@@ -157,13 +179,17 @@ up() {
     command -v "$program" >/dev/null || fail "$program: not installed (run scripts/setup.sh)"
   done
   [ ! -e "$state" ] || [ -d "$state" ] || fail "$state: not a folder"
-  local was_up=1
-  [ -n "$(live_pid "$state/slurmd.pid" slurmd)" ] || was_up=0
-  write_config
-  if ! start_daemons; then
+  # A cluster already up keeps its slurm.conf (and its ports) and is never
+  # stopped here, not even when its node is not idle in time.
+  local was_up=0
+  [ -z "$(dead_daemon)" ] && [ -f "$conf" ] && was_up=1
+  if [ $was_up = 0 ]; then
+    write_config
+  fi
+  if [ $was_up = 0 ] && ! start_daemons; then
     local dead
     dead=$(dead_daemon)
-    stop_all >/dev/null
+    stop_all >/dev/null || true
     fail "the cluster did not come up: ${dead%% *} failed to start; read ${dead#* } and $state/log/start.log"
   fi
   local start=$SECONDS node_now="" dead=""
@@ -181,7 +207,10 @@ up() {
     esac
     sleep 0.2
   done
-  stop_all >/dev/null
+  if [ $was_up = 1 ]; then
+    fail "the cluster is up, but its node $node is '${node_now:-unknown}', not idle, after $timeout_s s; read $state/log/slurmctld.log and $state/log/slurmd.log"
+  fi
+  stop_all >/dev/null || true
   if [ -n "$dead" ]; then
     local reason
     reason=$(grep -E 'fatal|[Ee]rror' "${dead#* }" 2>/dev/null | tail -n1 | cut -c1-160 || true)
@@ -193,8 +222,10 @@ up() {
 case "$action" in
   up) up;;
   down)
-    stopped=$(stop_all)
-    [ -n "$stopped" ] && echo "$stopped" || echo "cluster not running ($state)";;
+    [ "$(id -u)" -eq 0 ] || fail "must run as root (the daemons run as root and munge)"
+    stopped_any=0
+    stop_all || exit 1
+    [ $stopped_any = 1 ] || echo "cluster not running ($state)";;
   env) echo "export SLURM_CONF=$conf";;
   *) usage;;
 esac

@@ -24,10 +24,10 @@
 set -euo pipefail
 
 usage() { echo "usage: $0 CONFIG SHARDS [RESULTS_ROOT] [--only I[,J...]] [--wait]" >&2; exit 2; }
-positional=() only="" wait=0
+positional=() only="" only_set=0 wait=0
 while [ $# -gt 0 ]; do
   case "$1" in
-    --only) [ $# -ge 2 ] || usage; only=$2; shift 2;;
+    --only) [ $# -ge 2 ] || usage; only=$2; only_set=1; shift 2;;
     --wait) wait=1; shift;;
     -*) usage;;
     *) positional+=("$1"); shift;;
@@ -39,17 +39,29 @@ fail() { echo "$0: $1" >&2; exit "${2:-1}"; }
 [ -f "${positional[0]}" ] || fail "${positional[0]}: no such config file" 2
 config=$(realpath "${positional[0]}")
 shards=${positional[1]}
-case "$shards" in ''|*[!0-9]*|0) fail "SHARDS $shards: expected a positive integer" 2;; esac
+case "$shards" in ''|*[!0-9]*) fail "SHARDS $shards: expected a positive integer" 2;; esac
+# Leading zeros are decimal (08 is 8), and more than 9 digits is out of range.
+digits() { local d=${1#"${1%%[!0]*}"}; [ ${#d} -le 9 ] && echo "$((10#${d:-0}))" || echo 999999999; }
+shards=$(digits "$shards")
+[ "$shards" -gt 0 ] || fail "SHARDS ${positional[1]}: expected a positive integer" 2
 root=$(realpath -m "${positional[2]:-results-slurm}")
-array="0-$((shards - 1))"
-if [ -n "$only" ]; then
+submitted=()
+if [ $only_set = 1 ]; then
+  # Each item a shard index: no empty item (1, or 1,,2), each index once, in decimal.
+  case "$only" in ""|,*|*,|*,,*) fail "--only $only: expected shard indices I[,J...]" 2;; esac
   IFS=, read -r -a picked <<<"$only"
-  [ ${#picked[@]} -gt 0 ] || fail "--only $only: expected shard indices I[,J...]" 2
+  declare -A seen=()
   for i in "${picked[@]}"; do
     case "$i" in ''|*[!0-9]*) fail "--only $only: expected shard indices I[,J...]" 2;; esac
-    [ "$i" -lt "$shards" ] || fail "--only $only: shard $i is out of range (0 to $((shards - 1)))" 2
+    n=$(digits "$i")
+    [ "$n" -lt "$shards" ] || fail "--only $only: shard $i is out of range (0 to $((shards - 1)))" 2
+    [ -n "${seen[$n]:-}" ] || submitted+=("$n")
+    seen[$n]=1
   done
-  array=$only
+  array=$(IFS=,; echo "${submitted[*]}")
+else
+  for ((i = 0; i < shards; ++i)); do submitted+=("$i"); done
+  array="0-$((shards - 1))"
 fi
 repo=$(cd "$(dirname "$0")/.." && pwd)
 duskmap=${DUSKMAP_BIN:-$repo/build/experiments/duskmap}
@@ -59,7 +71,6 @@ jobs=${DUSKMAP_JOBS:-2}
 mkdir -p "$root/logs"
 # A resubmitted shard's earlier status goes now, so that it cannot stand for
 # a task that is cancelled before it starts.
-IFS=, read -r -a submitted <<<"${only:-$(seq -s, 0 $((shards - 1)))}"
 for i in "${submitted[@]}"; do rm -f "$root/logs/shard-$i.exit"; done
 rm -f "$root/logs/report.exit"
 
@@ -69,19 +80,32 @@ array_id=$(sbatch --parsable ${SBATCH_ARGS:-} \
   --output="$root/logs/shard-%a.log" --open-mode=append \
   "$repo/scripts/slurm_shard.sh" "$duskmap" "$config" "$shards" "$root")
 array_id=${array_id%%;*}
+echo "submitted shards $array as array job $array_id"
 # shellcheck disable=SC2086
 report_id=$(sbatch --parsable ${SBATCH_ARGS:-} \
   --job-name=duskmap-report --dependency=afterany:"$array_id" \
   --output="$root/logs/report.log" \
-  "$repo/scripts/slurm_merge.sh" "$duskmap" "$config" "$shards" "$root")
+  "$repo/scripts/slurm_merge.sh" "$duskmap" "$config" "$shards" "$root") ||
+  fail "the merge job was not submitted (sbatch failed) but the array job $array_id was: scancel $array_id, or once it has ended run $(printf '%q ' "$repo/scripts/slurm_merge.sh" "$duskmap" "$config" "$shards" "$root")"
 report_id=${report_id%%;*}
-
-echo "submitted shards $array as array job $array_id and the merge as job $report_id"
+echo "submitted the merge as job $report_id"
 echo "results: $root/shard-*/, logs: $root/logs/, report: $root/report/"
 [ $wait = 1 ] || exit 0
 
-# The merge job has ended when Slurm no longer lists it as pending or running.
-while squeue -h -j "$report_id" -t PD,R,CG,CF,S 2>/dev/null | grep -q .; do sleep 2; done
+# The merge job has ended once it has written its status, or once a working
+# squeue no longer lists it as pending or running, or no longer knows it
+# (then it was killed or cancelled before it wrote one). A failed squeue (a
+# busy controller, a timeout) proves nothing and is tried again.
+squeue_err=$(mktemp)
+trap 'rm -f "$squeue_err"' EXIT
+until [ -f "$root/logs/report.exit" ]; do
+  if listed=$(squeue -h -j "$report_id" -t PD,R,CG,CF,S 2>"$squeue_err"); then
+    [ -n "$listed" ] || break
+  elif grep -q 'Invalid job id' "$squeue_err"; then
+    break
+  fi
+  sleep 2
+done
 [ -f "$root/logs/report.exit" ] ||
   fail "the merge job $report_id ended without a status (killed or cancelled): read $root/logs/report.log"
 rc=$(cat "$root/logs/report.exit")

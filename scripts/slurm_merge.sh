@@ -37,7 +37,7 @@ for ((i = 0; i < shards; ++i)); do
   fi
   failed+=("$i")
   echo "slurm_merge.sh: shard $i of $shards $why: read $log; resubmit it alone:" \
-    "scripts/slurm_matrix.sh $config $shards $root --only $i" >&2
+    "$(printf 'scripts/slurm_matrix.sh %q %q %q --only %s' "$config" "$shards" "$root" "$i")" >&2
 done
 if [ ${#failed[@]} -gt 0 ]; then
   list=$(IFS=,; echo "${failed[*]}")

@@ -3,8 +3,10 @@
 #   - a cluster that does not come up (its controller's port already taken)
 #     is one line naming the daemon and the log to read, exit 1, and leaves no
 #     daemon running;
-#   - up brings an idle node, up again says so, down stops each daemon by its
-#     PID, down again does nothing; no daemon is left.
+#   - up brings an idle node, up again says so and keeps its slurm.conf (other
+#     DUSKMAP_SLURM_PORTS), up again timing out stops nothing, down as a user
+#     other than root is one line and stops nothing, down stops each daemon by
+#     its PID, down again does nothing; no daemon is left.
 # Exits 77 (ctest SKIP_RETURN_CODE) without Slurm and munge, or when not root.
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/../.." && pwd)
@@ -46,7 +48,7 @@ import socket, sys, time
 s = socket.socket(); s.bind(("0.0.0.0", 16927)); s.listen(); print("listening", flush=True); time.sleep(120)
 ' >"$tmp/listener.log" &
 listener=$!
-until grep -q listening "$tmp/listener.log"; do sleep 0.1; done
+until grep -qs listening "$tmp/listener.log"; do sleep 0.1; done
 if bash "$repo/scripts/slurm_local.sh" up "$state" >"$tmp/up.out" 2>"$tmp/up.err"; then
   check "up succeeded although its port is taken"
 fi
@@ -61,8 +63,25 @@ listener=""
 bash "$repo/scripts/slurm_local.sh" up "$state" | tee "$tmp/up.out"
 grep -q "cluster up: node .* idle" "$tmp/up.out" || check "up: $(cat "$tmp/up.out")"
 [ "$(daemons_of | wc -l)" -eq 3 ] || check "not three daemons: $(daemons_of)"
-bash "$repo/scripts/slurm_local.sh" up "$state" | grep -q "cluster already up" || check "up twice"
+conf_before=$(cat "$state/slurm.conf")
+DUSKMAP_SLURM_PORTS="16937 16938" bash "$repo/scripts/slurm_local.sh" up "$state" | grep -q "cluster already up" ||
+  check "up twice"
 [ "$(daemons_of | wc -l)" -eq 3 ] || check "up twice started more daemons"
+[ "$(cat "$state/slurm.conf")" = "$conf_before" ] || check "up on a running cluster rewrote its slurm.conf"
+# Up on a running cluster whose node is not idle in time fails but stops nothing.
+if DUSKMAP_SLURM_UP_TIMEOUT_S=0 bash "$repo/scripts/slurm_local.sh" up "$state" 2>"$tmp/up.err"; then
+  check "up with no time to wait succeeded"
+fi
+grep -qF "the cluster is up, but its node" "$tmp/up.err" || check "up timed out: $(cat "$tmp/up.err")"
+[ "$(daemons_of | wc -l)" -eq 3 ] || check "a timed-out up stopped a cluster it did not start"
+# Down needs root: as another user it is one line and stops nothing.
+if runuser -u nobody -- bash "$repo/scripts/slurm_local.sh" down "$state" >"$tmp/down.out" 2>"$tmp/down.err"; then
+  check "down as nobody succeeded"
+fi
+[ "$(wc -l <"$tmp/down.err")" -eq 1 ] && grep -qF "must run as root" "$tmp/down.err" ||
+  check "down as nobody: $(cat "$tmp/down.err")"
+[ ! -s "$tmp/down.out" ] || check "down as nobody printed: $(cat "$tmp/down.out")"
+[ "$(daemons_of | wc -l)" -eq 3 ] || check "down as nobody stopped daemons"
 SLURM_CONF="$state/slurm.conf" sinfo -h -o '%T' | grep -q idle || check "sinfo does not see an idle node"
 bash "$repo/scripts/slurm_local.sh" down "$state" | tee "$tmp/down.out"
 [ "$(grep -c '^stopped ' "$tmp/down.out")" -eq 3 ] || check "down: $(cat "$tmp/down.out")"

@@ -71,19 +71,28 @@ mkdir -p "$root"
 touch "$root/shard-1"  # shard 1 fails: its output folder is a file
 submitted=$(bash "$repo/scripts/slurm_matrix.sh" "$tmp/quick_matrix.json" 3 "$root")
 echo "$submitted"
-array_id=$(sed -n 's/.* as array job \([0-9]*\) .*/\1/p' <<<"$submitted")
-report_id=$(sed -n 's/.* the merge as job \([0-9]*\)$/\1/p' <<<"$submitted")
+array_id=$(sed -n 's/^submitted shards .* as array job \([0-9]*\)$/\1/p' <<<"$submitted")
+report_id=$(sed -n 's/^submitted the merge as job \([0-9]*\)$/\1/p' <<<"$submitted")
 [ -n "$array_id" ] && [ -n "$report_id" ] || check "no job ids in: $submitted"
 # Shard 2 is killed a few seconds after it starts.
-until squeue -h -j "${array_id}_2" -t R | grep -q .; do
-  squeue -h -j "${array_id}_2" -t PD,CF | grep -q . || check "shard 2 ended before it could be cancelled"
+# A failed squeue (a busy controller) proves nothing: it is tried again.
+until listed=$(squeue -h -j "${array_id}_2" -t R) && [ -n "$listed" ]; do
+  if listed=$(squeue -h -j "${array_id}_2" -t PD,CF); then
+    [ -n "$listed" ] || check "shard 2 ended before it could be cancelled"
+  fi
   sleep 1
 done
 sleep 3
 scancel "${array_id}_2"
-while squeue -h -j "$report_id" -t PD,R,CG,CF,S 2>/dev/null | grep -q .; do sleep 2; done
+# The merge has ended once it wrote its status, or once a working squeue no
+# longer lists it (then the check below fails).
+until [ -f "$root/logs/report.exit" ]; do
+  if listed=$(squeue -h -j "$report_id" -t PD,R,CG,CF,S 2>/dev/null); then [ -n "$listed" ] || break; fi
+  sleep 2
+done
 echo "first submission ended: $((SECONDS - start)) s"
 
+[ -f "$root/logs/report.exit" ] || check "the merge job $report_id ended without a status: $(cat "$root/logs/report.log")"
 [ "$(cat "$root/logs/report.exit")" = 1 ] || check "the merge of a failed run did not fail"
 merge_log=$(cat "$root/logs/report.log")
 grep -qF "shard 1 of 3 exited with status 1: read $root/logs/shard-1.log; resubmit it alone:" \
