@@ -207,7 +207,9 @@ up() {
     esac
     sleep 0.2
   done
-  if [ $was_up = 1 ]; then
+  if [ $was_up = 1 ] && [ -n "$dead" ]; then
+    fail "the cluster was up, but ${dead%% *} exited; read ${dead#* } (it is not stopped here: run down, then up)"
+  elif [ $was_up = 1 ]; then
     fail "the cluster is up, but its node $node is '${node_now:-unknown}', not idle, after $timeout_s s; read $state/log/slurmctld.log and $state/log/slurmd.log"
   fi
   stop_all >/dev/null || true

@@ -45,10 +45,16 @@ daemons_of() {  # the live daemons whose command line names the state folder
 export DUSKMAP_SLURM_PORTS="16927 16928" DUSKMAP_SLURM_UP_TIMEOUT_S=30
 /usr/bin/python3 -c '
 import socket, sys, time
-s = socket.socket(); s.bind(("0.0.0.0", 16927)); s.listen(); print("listening", flush=True); time.sleep(120)
-' >"$tmp/listener.log" &
+s = socket.socket(); s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+s.bind(("0.0.0.0", 16927)); s.listen(); print("listening", flush=True); time.sleep(120)
+' >"$tmp/listener.log" 2>&1 &
 listener=$!
-until grep -qs listening "$tmp/listener.log"; do sleep 0.1; done
+# SO_REUSEADDR: the port may still hold closed connections (TIME_WAIT) of a run
+# just before; a second listener is refused all the same.
+until grep -qs listening "$tmp/listener.log"; do
+  kill -0 "$listener" 2>/dev/null || check "the listener on port 16927 did not start: $(cat "$tmp/listener.log")"
+  sleep 0.1
+done
 if bash "$repo/scripts/slurm_local.sh" up "$state" >"$tmp/up.out" 2>"$tmp/up.err"; then
   check "up succeeded although its port is taken"
 fi
