@@ -24,6 +24,10 @@ struct SkippedFeature {
   std::string reason;
 };
 
+// More shards than any plan has jobs: a run.json or --shard beyond it is refused
+// before anything is sized by it.
+inline constexpr int kMaxShardCount = 100000;
+
 struct RunManifest {
   std::string config_path;
   std::string dataset_path;
@@ -31,7 +35,7 @@ struct RunManifest {
   std::vector<SkippedFeature> skipped_features;
   SessionClock session_clock;               // minutes since midnight, by session name
   int shard_index = 0;
-  int shard_count = 1;
+  int shard_count = 1;  // in [1, kMaxShardCount]
   // Everything that shapes a result, for --resume: the experiment config and
   // the engine config as parsed (RunConfiguration), the dataset's identity
   // (DatasetIdentity) and the duskmap version; and its checksum.

@@ -173,6 +173,8 @@ ShardSpec ParseShard(const std::string& text) {
   SLAM_THROW_IF_NOT(ConfigError, in && in.peek() == EOF && slash == '/' && shard.count >= 1 &&
                                      shard.index >= 0 && shard.index < shard.count)
       << "--shard " << text << ": expected i/n with 0 <= i < n";
+  SLAM_THROW_IF_NOT(ConfigError, shard.count <= kMaxShardCount)
+      << "--shard " << text << ": at most " << kMaxShardCount << " shards";
   return shard;
 }
 

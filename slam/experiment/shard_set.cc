@@ -1,6 +1,7 @@
 #include "slam/experiment/shard_set.h"
 
 #include <algorithm>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -55,22 +56,23 @@ void CheckShardsOfOneRun(const std::vector<ShardFolder>& folders) {
   const ShardFolder& first = folders.front();
   for (const ShardFolder& folder : folders) {
     const RunManifest& m = folder.manifest;
-    SLAM_THROW_IF_NOT(InputError, m.shard_count >= 1 && m.shard_index >= 0 &&
+    SLAM_THROW_IF_NOT(InputError, m.shard_count >= 1 && m.shard_count <= kMaxShardCount &&
+                                      m.shard_index >= 0 &&
                                       m.shard_index < m.shard_count)
         << ManifestPath(folder) << ": shard " << ShardName(m)
         << " is out of range (malformed run manifest)";
   }
-  std::vector<const ShardFolder*> holder(first.manifest.shard_count, nullptr);
+  std::map<int, const ShardFolder*> holder;  // by shard index
   for (const ShardFolder& folder : folders) {
     const std::string why = OtherRun(first.manifest, folder.manifest);
     SLAM_THROW_IF_NOT(InputError, why.empty())
         << ManifestPath(folder) << ": not a shard of the run in " << ManifestPath(first) << " ("
         << why << "); merge only the shards of one run";
     const int index = folder.manifest.shard_index;
-    SLAM_THROW_IF_NOT(InputError, holder[index] == nullptr)
+    const auto [held, inserted] = holder.emplace(index, &folder);
+    SLAM_THROW_IF_NOT(InputError, inserted)
         << ManifestPath(folder) << ": shard " << ShardName(folder.manifest) << " given twice (also "
-        << ManifestPath(*holder[index]) << ")";
-    holder[index] = &folder;
+        << ManifestPath(*held->second) << ")";
   }
 }
 

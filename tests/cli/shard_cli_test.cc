@@ -126,7 +126,8 @@ TEST_F(ShardCli, ShardGivenTwiceIsRefused) {
 // A run.json whose shard is out of range (edited, or damaged) is refused
 // before any folder is sized by it.
 TEST_F(ShardCli, ShardOutOfRangeInRunJsonIsRefused) {
-  for (const auto& [index, count] : {std::pair{0, -1}, std::pair{3, 3}, std::pair{-2, 3}}) {
+  for (const auto& [index, count] : {std::pair{0, -1}, std::pair{3, 3}, std::pair{-2, 3},
+                                    std::pair{0, 2000000000}}) {
     fs::remove_all(dir_ / "bad0");
     fs::copy(dir_ / "shard0", dir_ / "bad0", fs::copy_options::recursive);
     nlohmann::json manifest = nlohmann::json::parse(std::ifstream(dir_ / "bad0" / "run.json"));

@@ -30,6 +30,13 @@ TEST(RunSetup, BadShardIsOneLineErrorNamingTheFlag) {
   }
 }
 
+TEST(RunSetup, AShardCountBeyondTheLimitIsRefused) {
+  EXPECT_EQ(ParseShard("0/" + std::to_string(kMaxShardCount)).count, kMaxShardCount);
+  const std::string text = "0/" + std::to_string(kMaxShardCount + 1);
+  EXPECT_EQ(ErrorOf([&] { ParseShard(text); }),
+            "--shard " + text + ": at most " + std::to_string(kMaxShardCount) + " shards");
+}
+
 TEST(RunSetup, CheckNamesTheFlag) {
   RunSetupOptions options;
   EXPECT_EQ(ErrorOf([&] { options.Check(); }), "");
