@@ -11,48 +11,59 @@ namespace duskmap {
 
 #define FEATURE_OPTION_CHECK(cond, name) \
   SLAM_THROW_IF_NOT(ConfigError, cond) << "features." << name << ": must satisfy " #cond
+// A type's option, under its registered name (feature_registry.h).
+#define FEATURE_TYPE_OPTION_CHECK(cond, type_id, name) \
+  SLAM_THROW_IF_NOT(ConfigError, cond)                 \
+      << "features." << FeatureTypeName(type_id) << "." << name << ": must satisfy " #cond
 
 void H5FeatureOptions::Check() const {
   SLAM_THROW_IF_NOT(ConfigError, descriptor_kind == "float" || descriptor_kind == "binary")
-      << "features.h5.descriptor_kind: '" << descriptor_kind
+      << "features." << FeatureTypeName(FeatureTypeId::kH5) << ".descriptor_kind: '"
+      << descriptor_kind
       << "' unknown (float: L2 over float32/float16; binary: Hamming over uint8)";
-  SLAM_THROW_IF_NOT(ConfigError, keypoint_origin == "pixel_centre" || keypoint_origin == "pixel_corner")
-      << "features.h5.keypoint_origin: '" << keypoint_origin
-      << "' unknown (pixel_centre: OpenCV and hloc; pixel_corner: COLMAP)";
+  SLAM_THROW_IF_NOT(ConfigError,
+                    keypoint_origin == "pixel_centre" || keypoint_origin == "pixel_corner")
+      << "features." << FeatureTypeName(FeatureTypeId::kH5) << ".keypoint_origin: '"
+      << keypoint_origin << "' unknown (pixel_centre: OpenCV and hloc; pixel_corner: COLMAP)";
 }
 
 void SurfOptions::Check() const {
-  FEATURE_OPTION_CHECK(hessian_threshold >= 0.0, "surf.hessian_threshold");
-  FEATURE_OPTION_CHECK(octaves >= 1 && octaves <= 6, "surf.octaves");
-  FEATURE_OPTION_CHECK(octave_layers >= 1 && octave_layers <= 8, "surf.octave_layers");
+  FEATURE_TYPE_OPTION_CHECK(hessian_threshold >= 0.0, FeatureTypeId::kSurf, "hessian_threshold");
+  FEATURE_TYPE_OPTION_CHECK(octaves >= 1 && octaves <= 6, FeatureTypeId::kSurf, "octaves");
+  FEATURE_TYPE_OPTION_CHECK(octave_layers >= 1 && octave_layers <= 8, FeatureTypeId::kSurf,
+                            "octave_layers");
 }
 void SiftOptions::Check() const {
-  FEATURE_OPTION_CHECK(octave_layers >= 1, "sift.octave_layers");
-  FEATURE_OPTION_CHECK(contrast_threshold >= 0.0, "sift.contrast_threshold");
-  FEATURE_OPTION_CHECK(edge_threshold > 0.0, "sift.edge_threshold");
-  FEATURE_OPTION_CHECK(sigma > 0.0, "sift.sigma");
+  FEATURE_TYPE_OPTION_CHECK(octave_layers >= 1, FeatureTypeId::kSift, "octave_layers");
+  FEATURE_TYPE_OPTION_CHECK(contrast_threshold >= 0.0, FeatureTypeId::kSift, "contrast_threshold");
+  FEATURE_TYPE_OPTION_CHECK(edge_threshold > 0.0, FeatureTypeId::kSift, "edge_threshold");
+  FEATURE_TYPE_OPTION_CHECK(sigma > 0.0, FeatureTypeId::kSift, "sigma");
 }
 void OrbOptions::Check() const {
-  FEATURE_OPTION_CHECK(scale_factor > 1.0 && scale_factor <= 4.0, "orb.scale_factor");
-  FEATURE_OPTION_CHECK(levels >= 1 && levels <= 16, "orb.levels");
-  FEATURE_OPTION_CHECK(edge_threshold >= 0 && edge_threshold <= 256, "orb.edge_threshold");
-  FEATURE_OPTION_CHECK(patch_size >= 2 && patch_size <= 256, "orb.patch_size");
-  FEATURE_OPTION_CHECK(fast_threshold >= 1 && fast_threshold <= 255, "orb.fast_threshold");
+  FEATURE_TYPE_OPTION_CHECK(scale_factor > 1.0 && scale_factor <= 4.0, FeatureTypeId::kOrb,
+                            "scale_factor");
+  FEATURE_TYPE_OPTION_CHECK(levels >= 1 && levels <= 16, FeatureTypeId::kOrb, "levels");
+  FEATURE_TYPE_OPTION_CHECK(edge_threshold >= 0 && edge_threshold <= 256, FeatureTypeId::kOrb,
+                            "edge_threshold");
+  FEATURE_TYPE_OPTION_CHECK(patch_size >= 2 && patch_size <= 256, FeatureTypeId::kOrb,
+                            "patch_size");
+  FEATURE_TYPE_OPTION_CHECK(fast_threshold >= 1 && fast_threshold <= 255, FeatureTypeId::kOrb,
+                            "fast_threshold");
 }
 void BriskOptions::Check() const {
-  FEATURE_OPTION_CHECK(threshold >= 1 && threshold <= 255, "brisk.threshold");
-  FEATURE_OPTION_CHECK(octaves >= 0 && octaves <= 8, "brisk.octaves");
-  FEATURE_OPTION_CHECK(pattern_scale > 0.0, "brisk.pattern_scale");
+  FEATURE_TYPE_OPTION_CHECK(threshold >= 1 && threshold <= 255, FeatureTypeId::kBrisk, "threshold");
+  FEATURE_TYPE_OPTION_CHECK(octaves >= 0 && octaves <= 8, FeatureTypeId::kBrisk, "octaves");
+  FEATURE_TYPE_OPTION_CHECK(pattern_scale > 0.0, FeatureTypeId::kBrisk, "pattern_scale");
 }
 void KazeOptions::Check() const {
-  FEATURE_OPTION_CHECK(threshold > 0.0, "kaze.threshold");
-  FEATURE_OPTION_CHECK(octaves >= 1, "kaze.octaves");
-  FEATURE_OPTION_CHECK(octave_layers >= 1, "kaze.octave_layers");
+  FEATURE_TYPE_OPTION_CHECK(threshold > 0.0, FeatureTypeId::kKaze, "threshold");
+  FEATURE_TYPE_OPTION_CHECK(octaves >= 1, FeatureTypeId::kKaze, "octaves");
+  FEATURE_TYPE_OPTION_CHECK(octave_layers >= 1, FeatureTypeId::kKaze, "octave_layers");
 }
 void AkazeOptions::Check() const {
-  FEATURE_OPTION_CHECK(threshold > 0.0, "akaze.threshold");
-  FEATURE_OPTION_CHECK(octaves >= 1, "akaze.octaves");
-  FEATURE_OPTION_CHECK(octave_layers >= 1, "akaze.octave_layers");
+  FEATURE_TYPE_OPTION_CHECK(threshold > 0.0, FeatureTypeId::kAkaze, "threshold");
+  FEATURE_TYPE_OPTION_CHECK(octaves >= 1, FeatureTypeId::kAkaze, "octaves");
+  FEATURE_TYPE_OPTION_CHECK(octave_layers >= 1, FeatureTypeId::kAkaze, "octave_layers");
 }
 void GfttOptions::Check() const {
   FEATURE_OPTION_CHECK(quality_level > 0.0 && quality_level < 1.0, "gftt.quality_level");
@@ -61,24 +72,30 @@ void GfttOptions::Check() const {
 }
 void FastOptions::Check() const { FEATURE_OPTION_CHECK(threshold >= 1, "fast.threshold"); }
 void BriefOptions::Check() const {
-  FEATURE_OPTION_CHECK(bytes == 16 || bytes == 32 || bytes == 64, "brief.bytes");
-  FEATURE_OPTION_CHECK(patch_size_px >= 8 && patch_size_px <= 128, "brief.patch_size_px");
-  FEATURE_OPTION_CHECK(smooth_sigma_px >= 0.0, "brief.smooth_sigma_px");
+  FEATURE_TYPE_OPTION_CHECK(bytes == 16 || bytes == 32 || bytes == 64, FeatureTypeId::kBrief,
+                            "bytes");
+  FEATURE_TYPE_OPTION_CHECK(patch_size_px >= 8 && patch_size_px <= 128, FeatureTypeId::kBrief,
+                            "patch_size_px");
+  FEATURE_TYPE_OPTION_CHECK(smooth_sigma_px >= 0.0, FeatureTypeId::kBrief, "smooth_sigma_px");
 }
 void DaisyOptions::Check() const {
-  FEATURE_OPTION_CHECK(radius_px > 0.0, "daisy.radius_px");
-  FEATURE_OPTION_CHECK(rings >= 1 && rings <= 8, "daisy.rings");
-  FEATURE_OPTION_CHECK(ring_points >= 1 && ring_points <= 32, "daisy.ring_points");
-  FEATURE_OPTION_CHECK(orientations >= 2 && orientations <= 32, "daisy.orientations");
+  FEATURE_TYPE_OPTION_CHECK(radius_px > 0.0, FeatureTypeId::kDaisy, "radius_px");
+  FEATURE_TYPE_OPTION_CHECK(rings >= 1 && rings <= 8, FeatureTypeId::kDaisy, "rings");
+  FEATURE_TYPE_OPTION_CHECK(ring_points >= 1 && ring_points <= 32, FeatureTypeId::kDaisy,
+                            "ring_points");
+  FEATURE_TYPE_OPTION_CHECK(orientations >= 2 && orientations <= 32, FeatureTypeId::kDaisy,
+                            "orientations");
 }
 void FreakOptions::Check() const {
-  FEATURE_OPTION_CHECK(detector == "gftt" || detector == "fast", "freak.detector");
-  FEATURE_OPTION_CHECK(pattern_scale > 0.0, "freak.pattern_scale");
+  FEATURE_TYPE_OPTION_CHECK(detector == "gftt" || detector == "fast", FeatureTypeId::kFreak,
+                            "detector");
+  FEATURE_TYPE_OPTION_CHECK(pattern_scale > 0.0, FeatureTypeId::kFreak, "pattern_scale");
 }
 void SuperPointOptions::Check() const {
-  FEATURE_OPTION_CHECK(threshold > 0.0 && threshold < 1.0, "superpoint.threshold");
-  FEATURE_OPTION_CHECK(nms_radius_px >= 0, "superpoint.nms_radius_px");
-  FEATURE_OPTION_CHECK(border_px >= 0, "superpoint.border_px");
+  FEATURE_TYPE_OPTION_CHECK(threshold > 0.0 && threshold < 1.0, FeatureTypeId::kSuperPoint,
+                            "threshold");
+  FEATURE_TYPE_OPTION_CHECK(nms_radius_px >= 0, FeatureTypeId::kSuperPoint, "nms_radius_px");
+  FEATURE_TYPE_OPTION_CHECK(border_px >= 0, FeatureTypeId::kSuperPoint, "border_px");
 }
 
 namespace {
@@ -90,8 +107,8 @@ void CheckOneOf(const std::string& value, std::initializer_list<const char*> all
     if (value == a) return;
     known += (known.empty() ? "" : ", ") + std::string(a);
   }
-  SLAM_THROW(ConfigError) << "features.onnx." << key << ": '" << value << "' unknown (" << known
-                          << ")";
+  SLAM_THROW(ConfigError) << "features." << FeatureTypeName(FeatureTypeId::kOnnx) << "." << key
+                          << ": '" << value << "' unknown (" << known << ")";
 }
 
 }  // namespace
@@ -103,27 +120,37 @@ void OnnxFeatureOptions::Check() const {
   CheckOneOf(score_activation, {"none", "sigmoid"}, "score_activation");
   CheckOneOf(descriptors_layout, {"n_by_d", "d_by_n"}, "descriptors_layout");
   CheckOneOf(keypoint_origin, {"pixel_centre", "pixel_corner"}, "keypoint_origin");
-  FEATURE_OPTION_CHECK(std::isfinite(input_scale) && input_scale > 0.0, "onnx.input_scale");
+  FEATURE_TYPE_OPTION_CHECK(std::isfinite(input_scale) && input_scale > 0.0, FeatureTypeId::kOnnx,
+                            "input_scale");
   const size_t channels = input_color == "gray" ? 1 : 3;
-  FEATURE_OPTION_CHECK(input_mean.size() == 1 || input_mean.size() == channels,
-                       "onnx.input_mean (one value, or one per input channel)");
-  FEATURE_OPTION_CHECK(input_std.size() == 1 || input_std.size() == channels,
-                       "onnx.input_std (one value, or one per input channel)");
-  for (const double m : input_mean) FEATURE_OPTION_CHECK(std::isfinite(m), "onnx.input_mean");
-  for (const double s : input_std) FEATURE_OPTION_CHECK(std::isfinite(s) && s > 0.0, "onnx.input_std");
-  FEATURE_OPTION_CHECK(input_multiple_px >= 1 && input_multiple_px <= 256, "onnx.input_multiple_px");
-  FEATURE_OPTION_CHECK(descriptor_dims >= 0 && descriptor_dims <= 8192, "onnx.descriptor_dims");
-  FEATURE_OPTION_CHECK(cell_size_px >= 1 && cell_size_px <= 64, "onnx.cell_size_px");
-  FEATURE_OPTION_CHECK(descriptor_stride_px >= 1 && descriptor_stride_px <= 64,
-                       "onnx.descriptor_stride_px");
-  FEATURE_OPTION_CHECK(nms_radius_px >= 0 && nms_radius_px <= 64, "onnx.nms_radius_px");
-  FEATURE_OPTION_CHECK(std::isfinite(threshold), "onnx.threshold");
-  FEATURE_OPTION_CHECK(border_px >= 0 && border_px <= 4096, "onnx.border_px");
+  FEATURE_TYPE_OPTION_CHECK(input_mean.size() == 1 || input_mean.size() == channels,
+                            FeatureTypeId::kOnnx,
+                            "input_mean (one value, or one per input channel)");
+  FEATURE_TYPE_OPTION_CHECK(input_std.size() == 1 || input_std.size() == channels,
+                            FeatureTypeId::kOnnx,
+                            "input_std (one value, or one per input channel)");
+  for (const double m : input_mean)
+    FEATURE_TYPE_OPTION_CHECK(std::isfinite(m), FeatureTypeId::kOnnx, "input_mean");
+  for (const double s : input_std)
+    FEATURE_TYPE_OPTION_CHECK(std::isfinite(s) && s > 0.0, FeatureTypeId::kOnnx, "input_std");
+  FEATURE_TYPE_OPTION_CHECK(input_multiple_px >= 1 && input_multiple_px <= 256,
+                            FeatureTypeId::kOnnx, "input_multiple_px");
+  FEATURE_TYPE_OPTION_CHECK(descriptor_dims >= 0 && descriptor_dims <= 8192, FeatureTypeId::kOnnx,
+                            "descriptor_dims");
+  FEATURE_TYPE_OPTION_CHECK(cell_size_px >= 1 && cell_size_px <= 64, FeatureTypeId::kOnnx,
+                            "cell_size_px");
+  FEATURE_TYPE_OPTION_CHECK(descriptor_stride_px >= 1 && descriptor_stride_px <= 64,
+                            FeatureTypeId::kOnnx, "descriptor_stride_px");
+  FEATURE_TYPE_OPTION_CHECK(nms_radius_px >= 0 && nms_radius_px <= 64, FeatureTypeId::kOnnx,
+                            "nms_radius_px");
+  FEATURE_TYPE_OPTION_CHECK(std::isfinite(threshold), FeatureTypeId::kOnnx, "threshold");
+  FEATURE_TYPE_OPTION_CHECK(border_px >= 0 && border_px <= 4096, FeatureTypeId::kOnnx, "border_px");
   if (contract == "dense") {  // the maps' sizes are the padded input's over their strides
-    FEATURE_OPTION_CHECK(score_layout != "cells" || input_multiple_px % cell_size_px == 0,
-                         "onnx.input_multiple_px (a multiple of cell_size_px)");
-    FEATURE_OPTION_CHECK(input_multiple_px % descriptor_stride_px == 0,
-                         "onnx.input_multiple_px (a multiple of descriptor_stride_px)");
+    FEATURE_TYPE_OPTION_CHECK(score_layout != "cells" || input_multiple_px % cell_size_px == 0,
+                              FeatureTypeId::kOnnx,
+                              "input_multiple_px (a multiple of cell_size_px)");
+    FEATURE_TYPE_OPTION_CHECK(input_multiple_px % descriptor_stride_px == 0, FeatureTypeId::kOnnx,
+                              "input_multiple_px (a multiple of descriptor_stride_px)");
   }
 }
 
