@@ -114,7 +114,9 @@ def main():
     if len(sys.argv) > 1:
         listed = subprocess.run(["ctest", "--test-dir", sys.argv[1], "-N"], capture_output=True, text=True)
         total = re.search(r"Total Tests: (\d+)", listed.stdout)
-        if total:
+        if not total:
+            problems.append(f"{sys.argv[1]}: `ctest -N` lists no tests (not a configured build folder?)")
+        else:
             with open(os.path.join(ROOT, "README.md"), encoding="utf-8") as text:
                 for number, line in enumerate(text, 1):
                     for quoted in re.findall(r"\b(\d{3,}) tests\b", line):
@@ -123,9 +125,12 @@ def main():
     with open(os.path.join(ROOT, "docs", "architecture.md"), encoding="utf-8") as text:
         architecture = text.read()
     rows = set(MODULE_ROW.findall(architecture))
-    for folder in module_folders():
+    folders = set(module_folders())
+    for folder in sorted(folders):
         if folder not in rows:
             problems.append(f"docs/architecture.md: the module table has no row for slam/{folder}")
+    for row in sorted(rows - folders):
+        problems.append(f"docs/architecture.md: the module table has a row for slam/{row}, which holds no sources")
     if "rtabmap_algorithms.md" not in architecture:
         problems.append("docs/architecture.md: does not say where the spec cited as \"spec §\" lives")
     problems += results_problems()

@@ -87,9 +87,14 @@ def functions(path):
         elif c == "{":
             head = code[statement_start:i]
             in_declarative_scope = all(scopes)
-            if (in_declarative_scope and ")" in head and not CONTROL.match(head)
-                    and not SCOPE_KEYWORDS.search(head.split("(")[0])
-                    and "=" not in head.split("(")[0]):
+            if in_declarative_scope and is_member_brace_init(head):
+                # "Foo::Foo(int a) : b_{a} {": the member's braces, then the body
+                i = matching_brace(code, i) + 1
+                continue
+            declaration = without_template_heads(head)
+            if (in_declarative_scope and ")" in declaration and not CONTROL.match(declaration)
+                    and not SCOPE_KEYWORDS.search(declaration.split("(")[0])
+                    and "=" not in declaration.split("(")[0]):
                 end = matching_brace(code, i)
                 signature = head.strip()
                 first = code.count("\n", 0, statement_start + (len(head) - len(head.lstrip())))
@@ -111,6 +116,35 @@ def functions(path):
             if word in ("public", "private", "protected"):
                 statement_start = i + 1
         i += 1
+
+
+def without_template_heads(head):
+    """The head without its "template <...>" parts, so that "template <class T>"
+    is not read as a class."""
+    out, i = [], 0
+    for m in re.finditer(r"\btemplate\s*<", head):
+        if m.start() < i:
+            continue
+        out.append(head[i:m.start()])
+        depth, j = 0, m.end() - 1
+        while j < len(head):
+            depth += {"<": 1, ">": -1}.get(head[j], 0)
+            j += 1
+            if depth == 0:
+                break
+        i = j
+    out.append(head[i:])
+    return "".join(out)
+
+
+def is_member_brace_init(head):
+    """True for the head of a constructor's initializer list whose member is
+    initialised with braces ("Foo(int a) : a_(a), b_" before "{a}")."""
+    close = head.find(")")
+    if close < 0:
+        return False
+    after_params = head[close + 1:]
+    return bool(re.search(r"(?<!:):(?!:)", after_params)) and bool(re.search(r"\w\s*$", after_params))
 
 
 def matching_brace(code, open_index):
