@@ -157,7 +157,7 @@ struct JsonCodec<ImageProcessorOptions> {
 
 // "camera": {"width": 640, "height": 480, "fx": 525, "fy": 525, "blur_sigma_px": 0.6,
 //            "exposure": {...}, "white_balance": {...}, "noise": {...}, "image_processor": {...}}
-// (the flat keys before issue 45 are refused with their new key: kMovedGeneratorKeys).
+// (the flat keys before issue 45 are refused with their new key: MovedGeneratorKeys()).
 template <>
 struct JsonCodec<CameraModelOptions> {
   template <typename F, typename O>
