@@ -13,8 +13,10 @@
 # Every shard builds the maps it owns and extracts only the features those
 # maps and their localization sessions need, so shards share no files.
 #
-#   --only I[,J...]  resubmits only these shards (after a failure), and the merge again
-#   --wait           waits for the merge job and exits with its status
+#   --only I[,J...]  resubmits only these shards (after a failure), and the merge again;
+#                    indices are decimal (01 is 1), an empty item is an error
+#   --wait           waits until the merge job has written its status (a failed squeue
+#                    is retried) and exits with it
 #
 # SBATCH_ARGS adds sbatch options (partition, account, time); DUSKMAP_BIN is
 # the program (default build/experiments/duskmap, at the same path on every node); DUSKMAP_JOBS
