@@ -19,16 +19,9 @@ namespace duskmap::cli {
 namespace {
 
 struct RunArgs {
-  std::string config;
-  std::string output;
-  int jobs = 0;  // 0 = one per hardware thread
-  bool resume = false;
-  bool overwrite = false;
-  std::string shard = "0/1";
+  RunSetupOptions setup;  // the flags the library's run takes, bound directly
   bool report = true;
   bool figures = true;
-  bool allow_unordered = false;
-  std::string feature_cache;  // folder of feature caches shared across runs; empty = none
 };
 
 std::string FormatDuration(double seconds) {
@@ -39,20 +32,6 @@ std::string FormatDuration(double seconds) {
   return out.str();
 }
 
-RunSetupOptions SetupOptionsOf(const RunArgs& args) {
-  RunSetupOptions setup;
-  setup.config_path = args.config;
-  setup.output_dir = args.output;
-  setup.parallel_jobs = args.jobs;
-  setup.resume = args.resume;
-  setup.overwrite = args.overwrite;
-  setup.shard = args.shard;
-  setup.allow_unordered = args.allow_unordered;
-  setup.feature_cache = args.feature_cache;
-  setup.program_version = DUSKMAP_VERSION;
-  return setup;
-}
-
 void PrintSkippedFeatures(const std::vector<SkippedFeature>& skipped_features) {
   for (const SkippedFeature& skipped : skipped_features) {
     std::cout << "note: feature " << skipped.label << " skipped: " << skipped.reason << "\n";
@@ -60,7 +39,7 @@ void PrintSkippedFeatures(const std::vector<SkippedFeature>& skipped_features) {
 }
 
 // (Said once the run is accepted: a refusal stays one line.)
-void PrintRunStart(const PreparedRun& run, const RunArgs& args) {
+void PrintRunStart(const PreparedRun& run, const std::string& shard) {
   std::cout << "dataset: " << run.dataset_files << " files, " << std::fixed
             << std::setprecision(2) << run.dataset_bytes / 1e9 << " GB checksummed in "
             << std::setprecision(1) << run.checksum_s << " s\n"
@@ -68,7 +47,7 @@ void PrintRunStart(const PreparedRun& run, const RunArgs& args) {
   std::cout << "duskmap run: " << run.plan.jobs.size() << " jobs (" << run.total_frames
             << " frame passes), " << run.parallel_jobs << " at once, results in "
             << run.output_dir.string()
-            << (run.shard.count > 1 ? ", shard " + args.shard : std::string()) << "\n"
+            << (run.shard.count > 1 ? ", shard " + shard : std::string()) << "\n"
             << std::flush;
 }
 
@@ -106,8 +85,8 @@ void PrintRunSummary(const JobRunSummary& summary) {
 }
 
 int RunExperiment(const RunArgs& args) {
-  PreparedRun run = PrepareRun(SetupOptionsOf(args), &PrintSkippedFeatures);
-  PrintRunStart(run, args);
+  PreparedRun run = PrepareRun(args.setup, &PrintSkippedFeatures);
+  PrintRunStart(run, args.setup.shard);
   const bool terminal = StdoutIsTerminal();
   const JobRunSummary summary = RunPreparedJobs(
       run, [terminal](const RunProgress& progress) { PrintProgress(progress, terminal); });
@@ -116,7 +95,7 @@ int RunExperiment(const RunArgs& args) {
   WriteRunTiming(summary, run.output_dir / "timing.json");
   if (args.report && run.shard.count == 1) {
     const ExperimentReportRequest request =
-        ReportRequestFor(args.config, {run.output_dir}, run.output_dir / "report", args.figures);
+        ReportRequestFor(args.setup.config_path, {run.output_dir}, run.output_dir / "report", args.figures);
     PrintReportOutcome(request, WriteExperimentReport(request));
   }
   SLAM_THROW_IF_NOT(Error, summary.ok())
@@ -126,19 +105,21 @@ int RunExperiment(const RunArgs& args) {
 
 RunFn SetupRun(CLI::App& command) {
   auto args = std::make_shared<RunArgs>();
-  command.add_option("config", args->config, "experiment config (configs/*.json)")->required();
-  command.add_option("--output", args->output,
+  RunSetupOptions& setup = args->setup;
+  setup.program_version = DUSKMAP_VERSION;
+  command.add_option("config", setup.config_path, "experiment config (configs/*.json)")->required();
+  command.add_option("--output", setup.output_dir,
                      "results folder (default: out/<config name without .json>)");
-  command.add_option("--jobs", args->jobs, "jobs run at once (default: one per CPU)");
-  command.add_flag("--resume", args->resume, "continue an interrupted run, keeping finished jobs");
-  command.add_flag("--overwrite", args->overwrite, "redo every job of an earlier run");
-  command.add_option("--shard", args->shard,
+  command.add_option("--jobs", setup.parallel_jobs, "jobs run at once (default: one per CPU)");
+  command.add_flag("--resume", setup.resume, "continue an interrupted run, keeping finished jobs");
+  command.add_flag("--overwrite", setup.overwrite, "redo every job of an earlier run");
+  command.add_option("--shard", setup.shard,
                      "run shard i of n (i/n, 0-based); merge shards with `duskmap report`");
-  command.add_flag("--allow-unordered", args->allow_unordered,
+  command.add_flag("--allow-unordered", setup.allow_unordered,
                    "read rgb.txt/depth.txt as recorded: sort them and drop unmatched frames (real TUM recordings)");
   command.add_flag("!--no-report", args->report, "do not write the report after the run");
   command.add_flag("!--no-figures", args->figures, "write the report's tables only");
-  command.add_option("--feature-cache", args->feature_cache,
+  command.add_option("--feature-cache", setup.feature_cache,
                      "folder of extracted features kept across runs: an extract job whose "
                      "session's files (by content), program, feature options, model or h5 "
                      "file and frame selection match an entry "
