@@ -10,19 +10,7 @@
 # Exits 77 (ctest SKIP_RETURN_CODE) without Slurm and munge, or when not root.
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/../.." && pwd)
-for program in munged slurmctld slurmd sinfo; do
-  if ! command -v "$program" >/dev/null; then
-    echo "SKIPPED: Slurm is not installed ($program missing); scripts/setup.sh installs slurm-wlm and munge"
-    exit 77
-  fi
-done
-if [ "$(id -u)" -ne 0 ]; then
-  echo "SKIPPED: the local Slurm cluster needs root (slurmd runs jobs as their users)"
-  exit 77
-fi
-tmp=$(mktemp -d "${TMPDIR:-/tmp}/duskmap_slurm_local_test.XXXXXX")
-chmod 755 "$tmp"  # munged runs as the munge user and must reach its folder inside
-state="$tmp/cluster"
+source "$repo/tests/slurm/cluster_test_setup.sh" duskmap_slurm_local_test
 listener=""
 cleanup() {
   local rc=$?
@@ -70,7 +58,8 @@ bash "$repo/scripts/slurm_local.sh" up "$state" | tee "$tmp/up.out"
 grep -q "cluster up: node .* idle" "$tmp/up.out" || check "up: $(cat "$tmp/up.out")"
 [ "$(daemons_of | wc -l)" -eq 3 ] || check "not three daemons: $(daemons_of)"
 conf_before=$(cat "$state/slurm.conf")
-DUSKMAP_SLURM_PORTS="16937 16938" bash "$repo/scripts/slurm_local.sh" up "$state" | grep -q "cluster already up" ||
+DUSKMAP_SLURM_PORTS="16937 16938" bash "$repo/scripts/slurm_local.sh" up "$state" >"$tmp/up2.out"
+grep -q "cluster already up" "$tmp/up2.out" ||
   check "up twice"
 [ "$(daemons_of | wc -l)" -eq 3 ] || check "up twice started more daemons"
 [ "$(cat "$state/slurm.conf")" = "$conf_before" ] || check "up on a running cluster rewrote its slurm.conf"
@@ -88,9 +77,11 @@ fi
   check "down as nobody: $(cat "$tmp/down.err")"
 [ ! -s "$tmp/down.out" ] || check "down as nobody printed: $(cat "$tmp/down.out")"
 [ "$(daemons_of | wc -l)" -eq 3 ] || check "down as nobody stopped daemons"
-SLURM_CONF="$state/slurm.conf" sinfo -h -o '%T' | grep -q idle || check "sinfo does not see an idle node"
+SLURM_CONF="$state/slurm.conf" sinfo -h -o '%T' >"$tmp/sinfo.out"
+grep -q idle "$tmp/sinfo.out" || check "sinfo does not see an idle node"
 bash "$repo/scripts/slurm_local.sh" down "$state" | tee "$tmp/down.out"
 [ "$(grep -c '^stopped ' "$tmp/down.out")" -eq 3 ] || check "down: $(cat "$tmp/down.out")"
 [ -z "$(daemons_of)" ] || check "daemons left after down: $(daemons_of)"
-bash "$repo/scripts/slurm_local.sh" down "$state" | grep -q "cluster not running" || check "down twice"
+bash "$repo/scripts/slurm_local.sh" down "$state" >"$tmp/down2.out"
+grep -q "cluster not running" "$tmp/down2.out" || check "down twice"
 echo PASSED

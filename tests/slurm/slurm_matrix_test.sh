@@ -21,22 +21,7 @@ set -euo pipefail
 repo=$(cd "$(dirname "$0")/../.." && pwd)
 duskmap=$(realpath "${1:?usage: $0 DUSKMAP_BINARY}")
 
-missing=""
-for program in munged slurmctld slurmd sbatch squeue sinfo scancel; do
-  command -v "$program" >/dev/null || missing+=" $program"
-done
-if [ -n "$missing" ]; then
-  echo "SKIPPED: Slurm is not installed (missing:$missing); scripts/setup.sh installs slurm-wlm and munge"
-  exit 77
-fi
-if [ "$(id -u)" -ne 0 ]; then
-  echo "SKIPPED: the local Slurm cluster needs root (slurmd runs jobs as their users)"
-  exit 77
-fi
-
-tmp=$(mktemp -d "${TMPDIR:-/tmp}/duskmap_slurm_test.XXXXXX")
-chmod 755 "$tmp"  # munged runs as the munge user and must reach its folder inside
-state="$tmp/cluster"
+source "$repo/tests/slurm/cluster_test_setup.sh" duskmap_slurm_test
 export DUSKMAP_SLURM_PORTS="16917 16918"  # apart from a cluster slurm_local.sh runs by default
 cleanup() {
   local rc=$?
