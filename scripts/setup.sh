@@ -13,6 +13,7 @@ PACKAGES=(
   python3-h5py python3-opencv  # tests write h5 files as hloc does; the external-feature example
   clang libclang-rt-14-dev  # libFuzzer targets under tests/fuzz (docs/real_data.md)
   slurm-wlm munge  # the one-node cluster of the slurm tests (scripts/slurm_local.sh)
+  python3-torch  # training DuskNet, the learned descriptor (scripts/train_descriptor.py), on the CPU
 )
 
 missing=()
