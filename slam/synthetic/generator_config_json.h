@@ -76,6 +76,7 @@ struct JsonCodec<ApartmentOptions> {
     f("window_reflectance", o.window_reflectance);
     f("floor_reflectance", o.floor_reflectance);
     f("relief_scale", o.relief_scale);
+    f("wall_paint_seed", o.wall_paint_seed);
     f("box_furniture", o.box_furniture);
     f("furniture", o.furniture);
     f("photo_materials", o.photo_materials);

@@ -24,6 +24,16 @@ struct TrainingScenesOptions {
 
 // One training scene: the generator config it is rendered with (the default
 // model's values with this scene's variations) and its clock times.
+// Its config: a seed of its own; scene.seed = DeriveSeed(seed, 1), the
+// texture seed GenerateDataset gives it too; scene.wall_paint_seed; the
+// furniture of training_furniture.h; photo materials in three scenes of
+// five; a date spread over the year (a golden-ratio sequence); sessions
+// "1".."N" (mapping) from full day (10:00-15:00) through sunset to lamp-lit
+// night (75 minutes after sunset to 23:00); the floor lamp on from around
+// sunset, each ceiling light on in half the scenes, lamps of 2500-3500 K;
+// the camera model's defaults. max_frames = frames_per_hour, and
+// route.frame_rate_hz such that those first frames span the whole patrol
+// route (rather than its first rooms).
 struct TrainingScene {
   int index = 0;
   GeneratorConfig config;           // its sessions: one per clock time

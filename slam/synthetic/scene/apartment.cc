@@ -1,6 +1,9 @@
 #include "slam/synthetic/scene/apartment.h"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <random>
 
 #include "slam/core/check.h"
 #include "slam/core/random.h"
@@ -37,15 +40,35 @@ void AddShade(SceneBuilder& b, int lamp, const Eigen::Vector3d& half_size) {
 
 WallFinish Paint(const cv::Vec3f& color) { return {TextureKind::kPaint, color}; }
 
+// The walls of `room`: its own colour, or with options.wall_paint_seed a
+// plausible paint (BGR reflectance) drawn for it.
+cv::Vec3f WallColor(const ApartmentOptions& options, int room, const cv::Vec3f& own_bgr) {
+  if (options.wall_paint_seed == 0) return own_bgr;
+  static const cv::Vec3f kPaints[] = {
+      {0.62f, 0.68f, 0.70f}, {0.55f, 0.72f, 0.78f}, {0.55f, 0.62f, 0.66f}, {0.72f, 0.64f, 0.52f},
+      {0.50f, 0.64f, 0.52f}, {0.50f, 0.60f, 0.70f}, {0.62f, 0.60f, 0.76f}, {0.40f, 0.50f, 0.70f},
+      {0.62f, 0.72f, 0.58f}, {0.72f, 0.58f, 0.62f}, {0.70f, 0.70f, 0.68f}, {0.45f, 0.52f, 0.56f}};
+  Rng rng(DeriveSeed(options.wall_paint_seed, static_cast<uint64_t>(room)));
+  const size_t pick = std::uniform_int_distribution<size_t>(0, std::size(kPaints) - 1)(rng);
+  const float lightness = std::uniform_real_distribution<float>(0.85f, 1.1f)(rng);
+  const cv::Vec3f paint = kPaints[pick] * lightness;
+  return {std::min(paint[0], 0.85f), std::min(paint[1], 0.85f), std::min(paint[2], 0.85f)};
+}
+
+RoomRect ShellRect(int room) {
+  const RoomFloor floor = ApartmentRoomFloors()[static_cast<size_t>(room)];
+  return {floor.min_xy.x(), floor.max_xy.x(), floor.min_xy.y(), floor.max_xy.y()};
+}
+
 void AddLivingRoom(SceneBuilder& b, const ApartmentOptions& options) {
   Scene& s = b.scene();
   const int room = 0;
-  const WallFinish paint = Paint({0.62f, 0.68f, 0.70f});  // warm off-white (BGR)
+  const WallFinish paint = Paint(WallColor(options, room, {0.62f, 0.68f, 0.70f}));  // warm off-white (BGR)
   const WallOpening patio = WindowOpening(2.0, 4.2, 0.4, 2.2);
   const WallOpening west_a = WindowOpening(0.7, 1.9, 0.8, 2.2);
   const WallOpening west_b = WindowOpening(2.7, 3.9, 0.8, 2.2);
   WallOpening kitchen_passage{1.2, 3.6, 0.0, 2.2, false, true, 0.1};
-  b.AddRoomShell({0, 6, 0, 4.6}, room,
+  b.AddRoomShell(ShellRect(room), room,
                  {{patio}, {west_a, west_b}, {DoorOpening(4.7, 5.6, true)}, {kitchen_passage}},
                  {paint, paint, paint, paint}, TextureKind::kWoodFloor, {0.22f, 0.36f, 0.52f});
   // North wall: the docking picture above the sofa, a clock, a poster.
@@ -120,11 +143,11 @@ void AddLivingRoom(SceneBuilder& b, const ApartmentOptions& options) {
 void AddKitchen(SceneBuilder& b, const ApartmentOptions& options) {
   Scene& s = b.scene();
   const int room = 1;
-  const WallFinish paint = Paint({0.55f, 0.72f, 0.78f});  // pale yellow
+  const WallFinish paint = Paint(WallColor(options, room, {0.55f, 0.72f, 0.78f}));  // pale yellow
   const WallOpening window = WindowOpening(7.3, 8.9, 1.0, 2.1);
   WallOpening passage{1.2, 3.6, 0.0, 2.2, false, false, 0.1};
   passage.casing = false;
-  b.AddRoomShell({6.1, 10, 0, 4.6}, room, {{window}, {passage}, {DoorOpening(7.0, 7.9, true)}, {}},
+  b.AddRoomShell(ShellRect(room), room, {{window}, {passage}, {DoorOpening(7.0, 7.9, true)}, {}},
                  {paint, paint, paint, paint}, TextureKind::kTiles, {0.35f, 0.38f, 0.4f});
   // Counter along the east wall: base and wall cabinets, worktop, tiled
   // backsplash, appliances and utensils.
@@ -178,8 +201,8 @@ void AddKitchen(SceneBuilder& b, const ApartmentOptions& options) {
 void AddCorridor(SceneBuilder& b, const ApartmentOptions& options) {
   Scene& s = b.scene();
   const int room = 2;
-  const WallFinish paint = Paint({0.55f, 0.62f, 0.66f});
-  b.AddRoomShell({0, 10, 4.7, 5.9}, room,
+  const WallFinish paint = Paint(WallColor(options, room, {0.55f, 0.62f, 0.66f}));
+  b.AddRoomShell(ShellRect(room), room,
                  {{DoorOpening(4.7, 5.6, false), DoorOpening(7.0, 7.9, false)}, {},
                   {DoorOpening(2.0, 2.9, true)}, {}},
                  {paint, paint, paint, paint}, TextureKind::kWoodFloor, {0.2f, 0.32f, 0.45f});
@@ -243,10 +266,10 @@ void AddCorridor(SceneBuilder& b, const ApartmentOptions& options) {
 void AddBedroom(SceneBuilder& b, const ApartmentOptions& options) {
   Scene& s = b.scene();
   const int room = 3;
-  const WallFinish paint = Paint({0.5f, 0.62f, 0.72f});
-  const WallFinish wallpaper{TextureKind::kWallpaper, {0.55f, 0.66f, 0.74f}};
+  const WallFinish paint = Paint(WallColor(options, room, {0.5f, 0.62f, 0.72f}));
+  const WallFinish wallpaper{TextureKind::kWallpaper, WallColor(options, 4, {0.55f, 0.66f, 0.74f})};
   const WallOpening window = WindowOpening(6.9, 8.1, 0.9, 2.1);
-  b.AddRoomShell({0, 5.5, 6.0, 9.0}, room, {{DoorOpening(2.0, 2.9, false)}, {window}, {}, {}},
+  b.AddRoomShell(ShellRect(room), room, {{DoorOpening(2.0, 2.9, false)}, {window}, {}, {}},
                  {paint, paint, wallpaper, paint}, TextureKind::kWoodFloor, {0.25f, 0.38f, 0.5f});
   // Bed with duvet and pillows, headboard, bedside table with the lamp.
   if (options.box_furniture) {
@@ -331,7 +354,7 @@ Scene BuildApartment(const ApartmentOptions& options) {
   Scene& s = builder.scene();
   s.material_credits = std::move(photos.credits);
   s.lamp_light = options.lamps.light;
-  s.room_names = {"living room", "kitchen", "corridor", "bedroom"};
+  for (const RoomFloor& floor : ApartmentRoomFloors()) s.room_names.push_back(floor.name);
   AddLivingRoom(builder, options);
   AddKitchen(builder, options);
   AddCorridor(builder, options);
@@ -351,6 +374,13 @@ Scene BuildApartment(const ApartmentOptions& options) {
       Rigid3d(CameraRotationFromYawPitchRoll(kPi, 0.0, 0.0), Eigen::Vector3d(3.2, 2.2, 1.3));
   AddFurniture(options.furniture, &s);
   return Scene(std::move(s));
+}
+
+std::vector<RoomFloor> ApartmentRoomFloors() {
+  return {{"living room", {0.0, 0.0}, {6.0, 4.6}},
+          {"kitchen", {6.1, 0.0}, {10.0, 4.6}},
+          {"corridor", {0.0, 4.7}, {10.0, 5.9}},
+          {"bedroom", {0.0, 6.0}, {5.5, 9.0}}};
 }
 
 std::vector<RouteWaypoint> ApartmentPatrolRoute() {

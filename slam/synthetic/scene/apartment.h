@@ -46,6 +46,11 @@ struct ApartmentOptions {
   // it comes from (relief.h). 1 = plausible real heights (millimetres to
   // centimetres); 0 = every surface flat (the scene before 2026-12-02).
   double relief_scale = 1.0;
+  // 0 = the rooms' own wall paints (the default dataset); otherwise each
+  // room's paint, and the bedroom's wallpaper, drawn from this seed among
+  // plausible paints (the learned descriptor's training scenes,
+  // training_scenes.h).
+  uint64_t wall_paint_seed = 0;
   // Catalog furniture (furniture_layout.h); none by default.
   FurnitureOptions furniture;
   // Photographic materials from furniture.catalog's images (wood floors,
@@ -63,6 +68,16 @@ struct ApartmentOptions {
 };
 
 Scene BuildApartment(const ApartmentOptions& options);
+
+// A room's floor: the rectangle its walls enclose (world x, y, metres).
+struct RoomFloor {
+  std::string name;  // as in Scene::room_names
+  Eigen::Vector2d min_xy = Eigen::Vector2d::Zero();
+  Eigen::Vector2d max_xy = Eigen::Vector2d::Zero();
+};
+
+// The apartment's rooms, in Scene::room_names order.
+std::vector<RoomFloor> ApartmentRoomFloors();
 
 // One waypoint of the patrol route: walk to `position_xy`, then optionally
 // hold still or turn in place (positive = counter-clockwise seen from above).
