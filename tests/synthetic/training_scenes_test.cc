@@ -296,5 +296,31 @@ TEST(TrainingScenes, ModelsAndPhotosAreTheInstalledCatalogs) {
   }
 }
 
+// One scene with photo materials built with the installed catalog: every
+// piece is there, inside its room, on or above the floor and below the ceiling.
+TEST(TrainingScenes, OneBuildsWithItsPiecesInsideTheirRooms) {
+  if (!std::filesystem::exists(DefaultFurnitureCatalogPath())) {
+    GTEST_SKIP() << "sweethome3d-furniture not installed: run scripts/setup.sh";
+  }
+  const TrainingScenesOptions options;
+  int index = 0;
+  while (MakeTrainingScene(options, index).config.scene.photo_materials.empty()) ++index;
+  const GeneratorConfig config = MakeTrainingScene(options, index).config;
+  const Scene scene = BuildApartment(config.scene);
+  EXPECT_EQ(scene.meshes.size(), config.scene.furniture.pieces.size());
+  EXPECT_EQ(scene.material_credits.empty(), false);
+  const std::vector<RoomFloor> floors = ApartmentRoomFloors();
+  for (const SceneMesh& mesh : scene.meshes) {
+    const RoomFloor& floor = floors[static_cast<size_t>(mesh.room)];
+    const Eigen::AlignedBox3d& box = mesh.bounds_in_world;
+    EXPECT_GE(box.min().x(), floor.min_xy.x() - 0.02) << mesh.model_id;
+    EXPECT_GE(box.min().y(), floor.min_xy.y() - 0.02) << mesh.model_id;
+    EXPECT_LE(box.max().x(), floor.max_xy.x() + 0.02) << mesh.model_id;
+    EXPECT_LE(box.max().y(), floor.max_xy.y() + 0.02) << mesh.model_id;
+    EXPECT_GE(box.min().z(), -0.02) << mesh.model_id;
+    EXPECT_LE(box.max().z(), 2.45) << mesh.model_id;
+  }
+}
+
 }  // namespace
 }  // namespace duskmap
