@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <algorithm>
 #include <cstdio>
 #include <vector>
 
@@ -62,6 +63,16 @@ uint64_t FileChecksum64(const std::filesystem::path& path) {
     if (got == 0) break;
   }
   sums.push_back(total);
+  return Checksum64(sums.data(), sums.size() * sizeof(uint64_t));
+}
+
+uint64_t BytesChecksum64(const void* data, size_t bytes) {
+  const unsigned char* at = static_cast<const unsigned char*>(data);
+  std::vector<uint64_t> sums;  // as FileChecksum64: one per block, then the size
+  for (size_t done = 0; done < bytes; done += kBlockBytes) {
+    sums.push_back(Checksum64(at + done, std::min(kBlockBytes, bytes - done)));
+  }
+  sums.push_back(bytes);
   return Checksum64(sums.data(), sums.size() * sizeof(uint64_t));
 }
 

@@ -6,6 +6,7 @@
 // core the page cache or the disk, not the arithmetic, sets the pace.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -17,5 +18,7 @@ namespace duskmap {
 uint64_t FileChecksum64(const std::filesystem::path& path);
 // The same as 16 lowercase hexadecimal digits.
 std::string FileChecksum64Hex(const std::filesystem::path& path);
+// FileChecksum64 of a file holding these bytes (an embedded model's).
+uint64_t BytesChecksum64(const void* data, size_t bytes);
 
 }  // namespace duskmap

@@ -17,10 +17,15 @@
 
 namespace duskmap {
 
-// The paths the feature type reads (FeatureType::file): onnx and superpoint
-// their model, h5 its file, or every regular file of its folder (sorted);
-// none for the others.
+// The paths the feature type reads (FeatureFilePath): onnx and superpoint
+// their model, h5 its file, or every regular file of its folder (sorted),
+// dusknet the model its model_path names; none for the others.
 std::vector<std::string> FeatureFilesOf(const FeatureOptions& features);
+
+// {"embedded:dusknet.onnx": 16 hexadecimal digits} for a type that runs the
+// model embedded in the program (dusknet without model_path), keyed and
+// recorded beside the files' checksums; {} for the others.
+nlohmann::json EmbeddedModelChecksums(const FeatureOptions& features);
 
 // {path: 16 hexadecimal digits} of `paths`; a path that does not exist is
 // recorded as null (the column is skipped or its extractor names it). Throws

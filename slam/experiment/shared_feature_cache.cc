@@ -95,6 +95,7 @@ nlohmann::json SharedFeatureCache::FileChecksumsOf(const FeatureCacheInputs& inp
     const auto known = options_.file_checksums.find(path);
     checksums[path] = known != options_.file_checksums.end() ? *known : FileChecksums({path})[path];
   }
+  checksums.update(EmbeddedModelChecksums(inputs.features));
   return checksums;
 }
 

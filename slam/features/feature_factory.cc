@@ -7,6 +7,7 @@
 #include "slam/features/freak.h"
 #include "slam/features/h5_extractor.h"
 #include "slam/features/onnx_extractor.h"
+#include "slam/features/onnx_patch_extractor.h"
 #include "slam/features/opencv_extractors.h"
 #include "slam/features/superpoint.h"
 #include "slam/features/surf.h"
@@ -38,7 +39,13 @@ std::unique_ptr<FeatureExtractor> CreateFeatureExtractor(const FeatureOptions& o
                                               o.max_depth_m);
     case FeatureTypeId::kSuperPoint:
       return CreateSuperPointExtractor(o.superpoint, o.max_features, o.max_depth_m);
+    case FeatureTypeId::kDuskNet:
+      return std::make_unique<OnnxPatchExtractor>(o.dusknet, o.sift, o.max_features, o.max_depth_m,
+                                                  FeatureTypeId::kDuskNet);
     case FeatureTypeId::kOnnx:
+      if (o.onnx.contract == "patch") {
+        return std::make_unique<OnnxPatchExtractor>(o.onnx, o.sift, o.max_features, o.max_depth_m);
+      }
       return std::make_unique<OnnxFeatureExtractor>(o.onnx, o.max_features, o.max_depth_m);
     case FeatureTypeId::kH5:
       return std::make_unique<H5FeatureExtractor>(o.h5, o.max_features, o.max_depth_m);

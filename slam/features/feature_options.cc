@@ -101,57 +101,75 @@ void SuperPointOptions::Check() const {
 namespace {
 
 void CheckOneOf(const std::string& value, std::initializer_list<const char*> allowed,
-                const std::string& key) {
+                const std::string& key, FeatureTypeId type) {
   std::string known;
   for (const char* a : allowed) {
     if (value == a) return;
     known += (known.empty() ? "" : ", ") + std::string(a);
   }
-  SLAM_THROW(ConfigError) << "features." << FeatureTypeName(FeatureTypeId::kOnnx) << "." << key
+  SLAM_THROW(ConfigError) << "features." << FeatureTypeName(type) << "." << key
                           << ": '" << value << "' unknown (" << known << ")";
 }
 
 }  // namespace
 
-void OnnxFeatureOptions::Check() const {
-  CheckOneOf(contract, {"dense", "sparse"}, "contract");
-  CheckOneOf(input_color, {"gray", "rgb", "bgr"}, "input_color");
-  CheckOneOf(score_layout, {"cells", "map"}, "score_layout");
-  CheckOneOf(score_activation, {"none", "sigmoid"}, "score_activation");
-  CheckOneOf(descriptors_layout, {"n_by_d", "d_by_n"}, "descriptors_layout");
-  CheckOneOf(keypoint_origin, {"pixel_centre", "pixel_corner"}, "keypoint_origin");
-  FEATURE_TYPE_OPTION_CHECK(std::isfinite(input_scale) && input_scale > 0.0, FeatureTypeId::kOnnx,
+void OnnxFeatureOptions::CheckAs(FeatureTypeId type) const {
+  CheckOneOf(contract, {"dense", "sparse", "patch"}, "contract", type);
+  CheckOneOf(detector, {"dog"}, "detector", type);
+  CheckOneOf(input_color, {"gray", "rgb", "bgr"}, "input_color", type);
+  CheckOneOf(score_layout, {"cells", "map"}, "score_layout", type);
+  CheckOneOf(score_activation, {"none", "sigmoid"}, "score_activation", type);
+  CheckOneOf(descriptors_layout, {"n_by_d", "d_by_n"}, "descriptors_layout", type);
+  CheckOneOf(keypoint_origin, {"pixel_centre", "pixel_corner"}, "keypoint_origin", type);
+  FEATURE_TYPE_OPTION_CHECK(std::isfinite(input_scale) && input_scale > 0.0, type,
                             "input_scale");
   const size_t channels = input_color == "gray" ? 1 : 3;
   FEATURE_TYPE_OPTION_CHECK(input_mean.size() == 1 || input_mean.size() == channels,
-                            FeatureTypeId::kOnnx,
+                            type,
                             "input_mean (one value, or one per input channel)");
   FEATURE_TYPE_OPTION_CHECK(input_std.size() == 1 || input_std.size() == channels,
-                            FeatureTypeId::kOnnx,
+                            type,
                             "input_std (one value, or one per input channel)");
   for (const double m : input_mean)
-    FEATURE_TYPE_OPTION_CHECK(std::isfinite(m), FeatureTypeId::kOnnx, "input_mean");
+    FEATURE_TYPE_OPTION_CHECK(std::isfinite(m), type, "input_mean");
   for (const double s : input_std)
-    FEATURE_TYPE_OPTION_CHECK(std::isfinite(s) && s > 0.0, FeatureTypeId::kOnnx, "input_std");
+    FEATURE_TYPE_OPTION_CHECK(std::isfinite(s) && s > 0.0, type, "input_std");
   FEATURE_TYPE_OPTION_CHECK(input_multiple_px >= 1 && input_multiple_px <= 256,
-                            FeatureTypeId::kOnnx, "input_multiple_px");
-  FEATURE_TYPE_OPTION_CHECK(descriptor_dims >= 0 && descriptor_dims <= 8192, FeatureTypeId::kOnnx,
+                            type, "input_multiple_px");
+  FEATURE_TYPE_OPTION_CHECK(descriptor_dims >= 0 && descriptor_dims <= 8192, type,
                             "descriptor_dims");
-  FEATURE_TYPE_OPTION_CHECK(cell_size_px >= 1 && cell_size_px <= 64, FeatureTypeId::kOnnx,
+  FEATURE_TYPE_OPTION_CHECK(cell_size_px >= 1 && cell_size_px <= 64, type,
                             "cell_size_px");
   FEATURE_TYPE_OPTION_CHECK(descriptor_stride_px >= 1 && descriptor_stride_px <= 64,
-                            FeatureTypeId::kOnnx, "descriptor_stride_px");
-  FEATURE_TYPE_OPTION_CHECK(nms_radius_px >= 0 && nms_radius_px <= 64, FeatureTypeId::kOnnx,
+                            type, "descriptor_stride_px");
+  FEATURE_TYPE_OPTION_CHECK(nms_radius_px >= 0 && nms_radius_px <= 64, type,
                             "nms_radius_px");
-  FEATURE_TYPE_OPTION_CHECK(std::isfinite(threshold), FeatureTypeId::kOnnx, "threshold");
-  FEATURE_TYPE_OPTION_CHECK(border_px >= 0 && border_px <= 4096, FeatureTypeId::kOnnx, "border_px");
+  FEATURE_TYPE_OPTION_CHECK(std::isfinite(threshold), type, "threshold");
+  FEATURE_TYPE_OPTION_CHECK(border_px >= 0 && border_px <= 4096, type, "border_px");
+  FEATURE_TYPE_OPTION_CHECK(patch_size_px >= 8 && patch_size_px <= 256, type, "patch_size_px");
+  FEATURE_TYPE_OPTION_CHECK(std::isfinite(support_per_size) && support_per_size > 0.0, type,
+                            "support_per_size");
+  FEATURE_TYPE_OPTION_CHECK(batch_size >= 1 && batch_size <= 65536, type, "batch_size");
+  SLAM_THROW_IF_NOT(ConfigError, contract != "patch" || input_color == "gray")
+      << "features." << FeatureTypeName(type) << ".input_color: the patch contract's input is gray";
   if (contract == "dense") {  // the maps' sizes are the padded input's over their strides
     FEATURE_TYPE_OPTION_CHECK(score_layout != "cells" || input_multiple_px % cell_size_px == 0,
-                              FeatureTypeId::kOnnx,
+                              type,
                               "input_multiple_px (a multiple of cell_size_px)");
-    FEATURE_TYPE_OPTION_CHECK(input_multiple_px % descriptor_stride_px == 0, FeatureTypeId::kOnnx,
+    FEATURE_TYPE_OPTION_CHECK(input_multiple_px % descriptor_stride_px == 0, type,
                               "input_multiple_px (a multiple of descriptor_stride_px)");
   }
+}
+
+OnnxFeatureOptions DuskNetFeatureOptions() {
+  OnnxFeatureOptions o;
+  o.contract = "patch";
+  o.descriptor_dims = 128;
+  o.detector = "dog";
+  o.patch_size_px = 32;
+  o.support_per_size = 6.0;
+  o.oriented = true;
+  return o;
 }
 
 void FeatureOptions::Check() const {
@@ -179,6 +197,7 @@ void FeatureOptions::Check() const {
   superpoint.Check();
   onnx.Check();
   h5.Check();
+  dusknet.CheckAs(FeatureTypeId::kDuskNet);
   const std::optional<FeatureFileSpec>& file = known->file;
   SLAM_THROW_IF_NOT(ConfigError, !file || file->required.empty() || !FeatureFilePath(*this).empty())
       << "features." << file->key << ": features of type " << type << " need " << file->required;
@@ -195,6 +214,8 @@ const std::string& FeatureFilePath(const FeatureOptions& options) {
       return options.onnx.model_path;
     case FeatureTypeId::kH5:
       return options.h5.path;
+    case FeatureTypeId::kDuskNet:
+      return options.dusknet.model_path;
     default:
       return kNone;
   }

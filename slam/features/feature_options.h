@@ -127,11 +127,14 @@ struct SuperPointOptions {
 //           of the map at 1/descriptor_stride_px.
 //   sparse: keypoints (1xNx2 or Nx2, x then y), descriptors (1xNxD or NxD,
 //           or DxN with descriptors_layout "d_by_n") and optional scores (N).
+//   patch:  a patch descriptor network (onnx_patch_extractor.h): keypoints
+//           from `detector`, patches from PatchSampler (patch_sampler.h),
+//           input Nx1xPxP (P = patch_size_px), output NxD, in batches.
 // OpenCV 4.6 imports no TopK, so a model that selects its keypoints with it
 // must be exported with its dense outputs instead.
 struct OnnxFeatureOptions {
   std::string model_path;
-  std::string contract = "dense";  // "dense" or "sparse"
+  std::string contract = "dense";  // "dense", "sparse" or "patch"
   // Input blob 1xCxHxW: C = 1 ("gray") or 3 ("rgb", "bgr": channel order);
   // value = (pixel * input_scale - input_mean[c]) / input_std[c], the image
   // padded (border replicated) to multiples of input_multiple_px.
@@ -159,8 +162,22 @@ struct OnnxFeatureOptions {
   bool normalize_descriptors = true;  // L2-normalise every descriptor
   std::string descriptors_layout = "n_by_d";     // sparse: "n_by_d" or "d_by_n"
   std::string keypoint_origin = "pixel_centre";  // sparse: "pixel_centre" or "pixel_corner"
-  void Check() const;
+  // Patch contract (threshold and border_px unused: the detector's keypoints are kept).
+  std::string detector = "dog";  // "dog": the sift type's keypoints (FeatureOptions::sift)
+  int patch_size_px = 32;        // P: the model's input is Nx1xPxP
+  double support_per_size = 6.0;  // patch side in image pixels per pixel of KeyPoint::size
+  bool oriented = true;          // patches turned by KeyPoint::angle
+  int batch_size = 256;          // patches per forward pass
+  void Check() const { CheckAs(FeatureTypeId::kOnnx); }
+  // Errors name the option under `type`'s section ("features.dusknet.batch_size").
+  void CheckAs(FeatureTypeId type) const;
 };
+
+// The options of the built-in dusknet type: the patch contract of the
+// committed model (slam/features/models/dusknet.onnx; model_path "" = the
+// model embedded at build time, embedded_model.h): 32x32 patches of 6 sizes,
+// oriented, value = pixel / 255, 128-D output.
+OnnxFeatureOptions DuskNetFeatureOptions();
 
 // Features imported from a file in hloc's HDF5 layout (h5_feature_file.h).
 struct H5FeatureOptions {
@@ -195,13 +212,14 @@ struct FeatureOptions {
   SuperPointOptions superpoint;
   OnnxFeatureOptions onnx;
   H5FeatureOptions h5;
+  OnnxFeatureOptions dusknet = DuskNetFeatureOptions();
   void Check() const;
 };
 
 // The path of the file that options.type reads besides the images, from the
 // option that names it (FeatureFileSpec::key: superpoint.model_path,
-// onnx.model_path, h5.path); empty for a type that reads none or an unknown
-// type.
+// onnx.model_path, h5.path; and dusknet.model_path, which overrides the
+// embedded model); empty for a type that reads none or an unknown type.
 const std::string& FeatureFilePath(const FeatureOptions& options);
 
 // The names of FeatureTypes() (feature_registry.h), in its order.

@@ -189,6 +189,11 @@ struct JsonCodec<OnnxFeatureOptions> {
     f("normalize_descriptors", o.normalize_descriptors);
     f("descriptors_layout", o.descriptors_layout);
     f("keypoint_origin", o.keypoint_origin);
+    f("detector", o.detector);
+    f("patch_size_px", o.patch_size_px);
+    f("support_per_size", o.support_per_size);
+    f("oriented", o.oriented);
+    f("batch_size", o.batch_size);
   }
 };
 
@@ -227,6 +232,7 @@ struct JsonCodec<FeatureOptions> {
     f(TypeKey(FeatureTypeId::kSuperPoint), o.superpoint);
     f(TypeKey(FeatureTypeId::kOnnx), o.onnx);
     f(TypeKey(FeatureTypeId::kH5), o.h5);
+    f(TypeKey(FeatureTypeId::kDuskNet), o.dusknet);
   }
 };
 

@@ -13,13 +13,19 @@ using K = DescriptorKind;
 
 // A detector that needs no file, with its one column, matched by NNDR.
 FeatureType Detector(FeatureTypeId id, const char* name, const char* code, DescriptorKind kind) {
-  return FeatureType{id, name, {{code, "nndr"}}, kind, std::nullopt};
+  return FeatureType{id, name, {{code, "nndr"}}, kind, std::nullopt, false};
+}
+
+// `type`, marked as a learned feature (a trained network).
+FeatureType Learned(FeatureType type) {
+  type.learned = true;
+  return type;
 }
 
 // A type that reads a file its options name (`key` under "features.").
 FeatureType FileType(FeatureTypeId id, const char* name, std::vector<FeatureColumn> columns,
                      std::optional<DescriptorKind> kind, FeatureFileSpec file) {
-  return FeatureType{id, name, std::move(columns), kind, std::move(file)};
+  return FeatureType{id, name, std::move(columns), kind, std::move(file), false};
 }
 
 std::vector<FeatureType> Declare() {
@@ -33,9 +39,12 @@ std::vector<FeatureType> Declare() {
       Detector(FeatureTypeId::kOrb, "orb", "OR", K::kBinary),
       Detector(FeatureTypeId::kAkaze, "akaze", "AK", K::kBinary),
       Detector(FeatureTypeId::kFreak, "freak", "FR", K::kBinary),
+      // duskmap's own patch descriptor on SIFT's keypoints (onnx_patch_extractor.h).
+      Learned(Detector(FeatureTypeId::kDuskNet, "dusknet", "DN", K::kFloat)),
       // SP and SG: the same SuperPoint features, matched by NNDR or by SuperGlue.
-      FileType(FeatureTypeId::kSuperPoint, "superpoint", {{"SP", "nndr"}, {"SG", "superglue"}},
-               K::kFloat, {"superpoint.model_path", "", false}),
+      Learned(FileType(FeatureTypeId::kSuperPoint, "superpoint",
+                       {{"SP", "nndr"}, {"SG", "superglue"}}, K::kFloat,
+                       {"superpoint.model_path", "", false})),
       // The columns of these two an experiment config declares, with codes of its own.
       FileType(FeatureTypeId::kOnnx, "onnx", {}, K::kFloat,
                {"onnx.model_path", "the model's .onnx file", false}),

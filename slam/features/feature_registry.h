@@ -22,7 +22,7 @@ namespace duskmap {
 
 // For code that means one type (an extractor's name, SuperGlue's features).
 enum class FeatureTypeId { kSurf, kSift, kBrief, kBrisk, kKaze, kDaisy, kOrb, kAkaze, kFreak,
-                           kSuperPoint, kOnnx, kH5 };
+                           kDuskNet, kSuperPoint, kOnnx, kH5 };
 
 // A column of the paper's tables that a type gives.
 struct FeatureColumn {
@@ -53,13 +53,16 @@ struct FeatureType {
   // (h5's descriptor_kind).
   std::optional<DescriptorKind> descriptors;
   std::optional<FeatureFileSpec> file;
+  // A learned feature (a trained network: superpoint, dusknet), as the
+  // report's findings group them; false for the types a config declares.
+  bool learned = false;
 
   bool DeclaredByConfig() const { return columns.empty(); }
 };
 
 // Every type, in the order the CLI lists them: the detectors that need no
-// file (surf, sift, brief, brisk, kaze, daisy, orb, akaze, freak), then
-// superpoint, onnx and h5.
+// file (surf, sift, brief, brisk, kaze, daisy, orb, akaze, freak, and
+// dusknet, whose model is embedded), then superpoint, onnx and h5.
 const std::vector<FeatureType>& FeatureTypes();
 const FeatureType& FeatureTypeOf(FeatureTypeId id);
 const std::string& FeatureTypeName(FeatureTypeId id);

@@ -26,10 +26,8 @@ void OpenCvExtractor::DetectAndDescribe(const cv::Mat& gray, std::vector<cv::Key
     // Every keypoint described; FeatureExtractor::Finish keeps the strongest.
     feature_->detectAndCompute(gray, cv::noArray(), *keypoints, *descriptors);
   } else {
-    feature_->detect(gray, *keypoints);
     // Limit before describing (the reference's limitKeypoints), strongest first.
-    cv::Mat none;
-    KeepStrongest(max_features(), keypoints, &none);
+    *keypoints = DetectStrongest(*feature_, gray, max_features());
     if (keypoints->empty()) return;
     feature_->compute(gray, *keypoints, *descriptors);
   }
@@ -51,14 +49,28 @@ void OpenCvExtractor::DetectAndDescribe(const cv::Mat& gray, std::vector<cv::Key
   }
 }
 
+std::vector<cv::KeyPoint> DetectStrongest(cv::Feature2D& feature, const cv::Mat& gray,
+                                          int max_features) {
+  std::vector<cv::KeyPoint> keypoints;
+  if (std::min(gray.cols, gray.rows) < OpenCvExtractor::kMinImageSidePx) return keypoints;
+  feature.detect(gray, keypoints);
+  cv::Mat none;
+  KeepStrongest(max_features, &keypoints, &none);
+  return keypoints;
+}
+
+cv::Ptr<cv::Feature2D> CreateSiftFeature2D(const SiftOptions& o, int max_features) {
+  o.Check();
+  return cv::SIFT::create(max_features, o.octave_layers, o.contrast_threshold, o.edge_threshold,
+                          o.sigma);
+}
+
 std::unique_ptr<FeatureExtractor> CreateSiftExtractor(const SiftOptions& o, int max_features,
                                                       double max_depth_m) {
-  o.Check();
-  return std::make_unique<OpenCvExtractor>(
-      FeatureTypeName(FeatureTypeId::kSift),
-      cv::SIFT::create(max_features, o.octave_layers, o.contrast_threshold, o.edge_threshold,
-                       o.sigma),
-      DescriptorKind::kFloat, max_features, max_depth_m, o.root_sift);
+  return std::make_unique<OpenCvExtractor>(FeatureTypeName(FeatureTypeId::kSift),
+                                           CreateSiftFeature2D(o, max_features),
+                                           DescriptorKind::kFloat, max_features, max_depth_m,
+                                           o.root_sift);
 }
 
 std::unique_ptr<FeatureExtractor> CreateOrbExtractor(const OrbOptions& o, int max_features,

@@ -46,6 +46,14 @@ class OpenCvExtractor : public FeatureExtractor {
 
 std::unique_ptr<FeatureExtractor> CreateSiftExtractor(const SiftOptions& o, int max_features,
                                                       double max_depth_m);
+// The sift type's detector and descriptor: cv::SIFT with `o`'s settings.
+cv::Ptr<cv::Feature2D> CreateSiftFeature2D(const SiftOptions& o, int max_features);
+// The keypoints an OpenCvExtractor describes in its kDetectThenCompute
+// passes: `feature`'s detections on `gray`, the strongest max_features,
+// strongest first; none on an image under kMinImageSidePx. The dusknet type's
+// keypoints are the sift type's this way (onnx_patch_extractor.h).
+std::vector<cv::KeyPoint> DetectStrongest(cv::Feature2D& feature, const cv::Mat& gray,
+                                          int max_features);
 std::unique_ptr<FeatureExtractor> CreateOrbExtractor(const OrbOptions& o, int max_features,
                                                      double max_depth_m);
 std::unique_ptr<FeatureExtractor> CreateBriskExtractor(const BriskOptions& o, int max_features,

@@ -6,14 +6,19 @@
 #include <sstream>
 #include <utility>
 
+#include "slam/features/feature_registry.h"
 #include "slam/report/report_cells.h"
 #include "slam/report/report_table_ids.h"
 
 namespace duskmap {
 namespace {
 
-// Features the paper calls learned (the other paper features are hand-crafted).
-bool IsLearned(const std::string& feature) { return feature == "SP" || feature == "SG"; }
+// Learned features (FeatureType::learned: SP, SG, DN); the other columns,
+// declared ones included, count as hand-crafted.
+bool IsLearned(const std::string& feature) {
+  const FeatureType* type = FindFeatureTypeByCode(feature);
+  return type != nullptr && type->learned;
+}
 bool IsBinary(const std::string& feature) { return feature == "BF" || feature == "BK"; }
 
 // How far the reduced map may trail the full merge and still be "not far
@@ -397,7 +402,7 @@ RuleOutcome TimingRule(const Tables& t, TableSide side) {
   // than on detection (15 ms).
   outcome.holds = detection_sum > lcd_sum && detection_sum > te_sum &&
                   (!brief || (fastest == "BF" && smallest == "BF")) &&
-                  (!learned || fewest == "SP" || fewest == "SG");
+                  (!learned || IsLearned(fewest));
   outcome.numbers =
       "detection, LCD, TE summed over the features: " + FormatFixed(detection_sum, 0) + ", " +
       FormatFixed(lcd_sum, 0) + ", " + FormatFixed(te_sum, 0) + " ms (detection the largest stage for " +

@@ -371,7 +371,7 @@ TEST(FeaturesEvalCli, PairsSelectASubset) {
 TEST(FeaturesEvalCli, TypesInAnyCaseAndListedInHelp) {
   const Result help = RunDuskmap("features eval --help");
   EXPECT_EQ(help.exit_code, 0) << help.output;
-  for (const char* needle : {"surf, sift, brief, brisk, kaze, daisy, orb, akaze, freak, superpoint, onnx, h5",
+  for (const char* needle : {"surf, sift, brief, brisk, kaze, daisy, orb, akaze, freak, dusknet, superpoint, onnx, h5",
                              "default: surf,sift,brief,brisk,kaze,daisy,orb,akaze,freak", "static",
                              "--pairs-file"}) {
     EXPECT_NE(help.output.find(needle), std::string::npos) << needle << "\n" << help.output;

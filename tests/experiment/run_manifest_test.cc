@@ -80,6 +80,10 @@ TEST(RunManifestTest, FeatureFileChecksumsFollowTheFilesContent) {
   experiment.declared_features = {h5, onnx};
   const EngineOptions engine;
   EXPECT_EQ(RunFeatureFileChecksums(experiment, engine, {"OR"}), nlohmann::json::object());
+  // DN without a model_path runs the embedded model: its checksum is recorded.
+  const nlohmann::json dusknet = RunFeatureFileChecksums(experiment, engine, {"DN"});
+  ASSERT_EQ(dusknet.size(), 1u) << dusknet.dump();
+  EXPECT_TRUE(dusknet["embedded:dusknet.onnx"].is_string()) << dusknet.dump();
   const nlohmann::json before = RunFeatureFileChecksums(experiment, engine, experiment.features);
   ASSERT_EQ(before.size(), 2u) << before.dump();
   EXPECT_TRUE(before[(dir / "orb.h5").string()].is_string());

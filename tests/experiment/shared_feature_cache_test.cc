@@ -6,7 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include "slam/core/file_checksum.h"
 #include "slam/experiment/feature_cache.h"
+#include "slam/experiment/feature_files.h"
+#include "slam/features/embedded_model.h"
 #include "slam/experiment/job_results_json.h"
 #include "tests/testing/temp_dir.h"
 
@@ -139,6 +142,39 @@ TEST(SharedFeatureCacheTest, ModelAndH5FilesKeyByContent) {
   EXPECT_EQ(cache.KeyOf(folder), folder_before);
   RewriteKeepingTime(folder.features.h5.path + "/1.h5", "session 1!!");
   EXPECT_NE(cache.KeyOf(folder), folder_before);
+  fs::remove_all(dir);
+}
+
+// dusknet keys on its model's content: the embedded model's checksum (that
+// of slam/features/models/dusknet.onnx as built) without model_path, the
+// named file's with it.
+TEST(SharedFeatureCacheTest, DuskNetKeysByTheEmbeddedModelOrItsFile) {
+  const std::string dir = testing::ProcessTempDir("shared_cache_dusknet");
+  const SharedFeatureCache cache(Options(dir));
+  FeatureCacheInputs embedded = Inputs();
+  embedded.cache_name = embedded.features.type = "dusknet";
+  const EmbeddedModel& model = EmbeddedDuskNetModel();
+  EXPECT_TRUE(FeatureFilesOf(embedded.features).empty());
+  EXPECT_EQ(EmbeddedModelChecksums(embedded.features),
+            nlohmann::json({{"embedded:dusknet.onnx", model.checksum_hex}}));
+  EXPECT_EQ(model.checksum_hex,
+            FileChecksum64Hex(std::string(DUSKMAP_SOURCE_DIR) + "/slam/features/models/dusknet.onnx"))
+      << "the embedded model is not the committed one";
+  const std::string embedded_key = cache.KeyOf(embedded);
+  EXPECT_EQ(cache.KeyOf(embedded), embedded_key);
+
+  FeatureCacheInputs file = embedded;
+  file.features.dusknet.model_path = dir + "/candidate.onnx";
+  std::ofstream(file.features.dusknet.model_path) << "candidate one";
+  EXPECT_EQ(FeatureFilesOf(file.features), std::vector<std::string>{file.features.dusknet.model_path});
+  EXPECT_TRUE(EmbeddedModelChecksums(file.features).empty());
+  const std::string file_key = cache.KeyOf(file);
+  EXPECT_NE(file_key, embedded_key);
+  RewriteKeepingTime(file.features.dusknet.model_path, "candidate two");
+  EXPECT_NE(cache.KeyOf(file), file_key);
+
+  // Other types run no embedded model.
+  EXPECT_TRUE(EmbeddedModelChecksums(Inputs().features).empty());
   fs::remove_all(dir);
 }
 

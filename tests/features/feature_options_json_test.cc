@@ -38,5 +38,35 @@ TEST(FeatureOptionsJsonTest, AMapsStoredOptionsReadBackAsWritten) {
             std::string::npos);
 }
 
+// The dusknet section: the patch contract's defaults, read and written back
+// under the type's registered name, its errors under it too.
+TEST(FeatureOptionsJsonTest, DuskNetOptionsRoundTrip) {
+  const FeatureOptions defaults;
+  EXPECT_EQ(defaults.dusknet.contract, "patch");
+  EXPECT_EQ(defaults.dusknet.detector, "dog");
+  EXPECT_EQ(defaults.dusknet.patch_size_px, 32);
+  EXPECT_EQ(defaults.dusknet.descriptor_dims, 128);
+  EXPECT_TRUE(defaults.dusknet.model_path.empty());  // the embedded model
+  const nlohmann::json json = ToJsonObject(defaults);
+  ASSERT_TRUE(json.contains("dusknet")) << json.dump();
+  EXPECT_EQ(json["dusknet"]["contract"], "patch");
+
+  FeatureOptions o;
+  o.type = "dusknet";
+  o.dusknet.model_path = "candidates/epoch_12.onnx";
+  o.dusknet.batch_size = 64;
+  o.dusknet.support_per_size = 5.0;
+  o.dusknet.oriented = false;
+  const FeatureOptions back = FeatureOptionsOfMap(ToJsonObject(o).dump(), "m.db");
+  EXPECT_EQ(ToJsonObject(back), ToJsonObject(o));
+  EXPECT_EQ(back.dusknet.model_path, "candidates/epoch_12.onnx");
+  EXPECT_EQ(back.dusknet.batch_size, 64);
+  EXPECT_FALSE(back.dusknet.oriented);
+  EXPECT_NO_THROW(back.Check());
+
+  o.dusknet.batch_size = 0;
+  EXPECT_NE(testing::ErrorOf([&] { o.Check(); }).find("features.dusknet.batch_size"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace duskmap

@@ -24,8 +24,8 @@ TEST(FeatureOptionsTest, DefaultsAreThePapersSettings) {
   EXPECT_EQ(o.daisy.radius_px, 15.0);
   EXPECT_EQ(o.superpoint.threshold, 0.010);
   EXPECT_EQ(o.superpoint.nms_radius_px, 4);
-  // The ten detectors, onnx (any model) and h5 (imported).
-  EXPECT_EQ(FeatureTypeNames().size(), 12u);
+  // The ten detectors, dusknet (the embedded model), onnx (any model) and h5 (imported).
+  EXPECT_EQ(FeatureTypeNames().size(), 13u);
   EXPECT_EQ(o.h5.descriptor_kind, "float");
   EXPECT_EQ(o.h5.keypoint_origin, "pixel_centre");
 }
@@ -42,10 +42,10 @@ TEST(FeatureOptionsTest, TypeNamesInAnyCase) {
   } catch (const ConfigError& e) {
     EXPECT_EQ(std::string(e.what()),
               "features eval: --types: unknown feature type 'SURFACE' (known: surf, sift, brief, brisk, kaze, "
-              "daisy, orb, akaze, freak, superpoint, onnx, h5)");
+              "daisy, orb, akaze, freak, dusknet, superpoint, onnx, h5)");
   }
   const std::vector<std::string>& built_in = BuiltInFeatureTypeNames();
-  ASSERT_EQ(built_in.size(), 9u);
+  ASSERT_EQ(built_in.size(), 10u);
   EXPECT_TRUE(std::equal(built_in.begin(), built_in.end(), FeatureTypeNames().begin()));
   for (const std::string& type : built_in) {
     FeatureOptions o;

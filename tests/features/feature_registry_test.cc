@@ -41,8 +41,8 @@ TEST(FeatureRegistry, EveryTypeHasAUniqueNameAndUniqueCodes) {
       EXPECT_FALSE(type.file->required.empty()) << type.name;
     }
   }
-  EXPECT_EQ(names.size(), 12u);
-  EXPECT_EQ(codes.size(), 11u);  // the paper's eight columns, OR, AK and FR
+  EXPECT_EQ(names.size(), 13u);
+  EXPECT_EQ(codes.size(), 12u);  // the paper's eight columns, OR, AK, FR and DN
   EXPECT_EQ(FeatureTypeNames().size(), FeatureTypes().size());
   EXPECT_EQ(DefaultFeatureTypeName(), FeatureTypes().front().name);
   EXPECT_EQ(FeatureOptions().type, DefaultFeatureTypeName());
@@ -64,7 +64,7 @@ TEST(FeatureRegistry, TheFactoryBuildsEveryTypeThatNeedsNoFile) {
     ++built;
   }
   EXPECT_EQ(built, static_cast<int>(BuiltInFeatureTypeNames().size()));
-  EXPECT_EQ(built, 9);
+  EXPECT_EQ(built, 10);
 }
 
 // The types that read a file are refused without it, by the option that names it.
@@ -81,6 +81,24 @@ TEST(FeatureRegistry, TypesThatReadAFileNameTheOptionWithoutIt) {
                                  {type.file->key.substr(0, dot), {{type.file->key.substr(dot + 1), "file"}}}};
     EXPECT_EQ(FeatureFilePath(ReadJsonOptions<FeatureOptions>(json, "features")), "file") << type.name;
   }
+}
+
+// DN: duskmap's learned descriptor, a built-in float type matched by NNDR;
+// the learned flag is set for it and SuperPoint only.
+TEST(FeatureRegistry, DuskNetIsABuiltInLearnedType) {
+  const FeatureType* type = FindFeatureTypeByCode("DN");
+  ASSERT_NE(type, nullptr);
+  EXPECT_EQ(type->id, FeatureTypeId::kDuskNet);
+  EXPECT_EQ(type->name, "dusknet");
+  EXPECT_EQ(type->columns.size(), 1u);
+  EXPECT_EQ(type->columns[0].matcher, "nndr");
+  EXPECT_EQ(type->descriptors, DescriptorKind::kFloat);
+  EXPECT_FALSE(type->file.has_value());  // its model is embedded
+  std::set<std::string> learned;
+  for (const FeatureType& t : FeatureTypes()) {
+    if (t.learned) learned.insert(t.name);
+  }
+  EXPECT_EQ(learned, (std::set<std::string>{"dusknet", "superpoint"}));
 }
 
 TEST(FeatureRegistry, LooksTypesUpByNameAndByCode) {
@@ -104,8 +122,8 @@ TEST(FeatureRegistry, LooksTypesUpByNameAndByCode) {
 // Unknown names are answered with every known one, from the registry.
 TEST(FeatureRegistry, UnknownTypesListTheKnownOnes) {
   EXPECT_EQ(KnownFeatureTypeNames(),
-            "surf, sift, brief, brisk, kaze, daisy, orb, akaze, freak, superpoint, onnx, h5");
-  EXPECT_EQ(KnownFeatureColumnCodes(), "SU, SI, BF, BK, KA, DY, OR, AK, FR, SP, SG");
+            "surf, sift, brief, brisk, kaze, daisy, orb, akaze, freak, dusknet, superpoint, onnx, h5");
+  EXPECT_EQ(KnownFeatureColumnCodes(), "SU, SI, BF, BK, KA, DY, OR, AK, FR, DN, SP, SG");
   FeatureOptions options;
   options.type = "SU";
   const std::string error = testing::ErrorOf([&] { options.Check(); });

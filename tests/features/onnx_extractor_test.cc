@@ -327,7 +327,7 @@ TEST(OnnxExtractorTest, OptionsAreChecked) {
     change(&o);
     return ErrorOf([&] { o.Check(); });
   };
-  EXPECT_NE(error([](auto* o) { o->contract = "grid"; }).find("features.onnx.contract: 'grid' unknown (dense, sparse)"),
+  EXPECT_NE(error([](auto* o) { o->contract = "grid"; }).find("features.onnx.contract: 'grid' unknown (dense, sparse, patch)"),
             std::string::npos);
   EXPECT_NE(error([](auto* o) { o->input_color = "rgba"; }).find("features.onnx.input_color"),
             std::string::npos);

@@ -61,4 +61,17 @@ inline std::string MakeOnnxFeatureModel(const std::string& file, const std::stri
   return RunModelScript("make_test_onnx_features.py", file, flags, "");
 }
 
+// A linear patch descriptor (make_test_onnx_patch.py) written to `path`, not
+// cached (each caller names its own path); `flags` such as "--dims 16
+// --weights W.f32". False when the script cannot run (the caller skips).
+inline bool MakeOnnxPatchModel(const std::string& path, const std::string& flags) {
+  namespace fs = std::filesystem;
+  const fs::path script = fs::path(DUSKMAP_SOURCE_DIR) / "scripts" / "make_test_onnx_patch.py";
+  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  const std::string command =
+      python + " " + script.string() + " " + path + " " + flags + " > /dev/null 2>&1";
+  std::error_code ec;
+  return std::system(command.c_str()) == 0 && fs::exists(path, ec);
+}
+
 }  // namespace duskmap::testing
