@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <optional>
 #include <random>
@@ -22,6 +23,11 @@ constexpr double kDropSmall = 0.2;       // share of floor and surface objects l
 constexpr int kTries = 12;               // draws of a place before it keeps its default piece
 constexpr double kMaxTopM = 1.6;         // highest top of a piece something stands on
 constexpr double kCeilingM = 2.4;        // highest top of any piece (the ceiling is at 2.5 m)
+
+Eigen::Vector2d Rotated(const Eigen::Vector2d& v, double yaw_deg) {
+  const double a = yaw_deg * kPi / 180.0;
+  return {std::cos(a) * v.x() - std::sin(a) * v.y(), std::sin(a) * v.x() + std::cos(a) * v.y()};
+}
 
 bool IsLarge(const std::string& group) { return group == "seat" || group == "storage" || group == "bed"; }
 
@@ -50,6 +56,7 @@ struct Place {
   std::optional<size_t> support;       // the place it stands on
   bool carries = false;                // something stands on it
   double clearance_m = 0.0;            // asked of any piece put here
+  double overlap = 0.0;                // FloorOverlap allowed here
 };
 
 const RoomFloor& FloorOf(const std::vector<RoomFloor>& floors, const std::string& room) {
@@ -83,6 +90,47 @@ std::optional<size_t> SupportOf(const std::vector<Place>& places, const Furnitur
   return std::nullopt;
 }
 
+bool InFootprint(const Eigen::Vector2d& point, const FurniturePiece& piece, const Eigen::Vector3d& size_m) {
+  const Eigen::Vector2d local = Rotated(point - piece.position_m, -piece.yaw_deg);
+  return std::abs(local.x()) <= 0.5 * size_m.x() && std::abs(local.y()) <= 0.5 * size_m.y();
+}
+
+// The share of a's footprint (a 16 x 16 grid of points) inside b's.
+double ShareInside(const FurniturePiece& a, const FurniturePiece& b) {
+  const Eigen::Vector3d size_a = TrainingFurnitureSize(a.model), size_b = TrainingFurnitureSize(b.model);
+  const double reach = 0.5 * (size_a.head<2>().norm() + size_b.head<2>().norm());
+  if ((a.position_m - b.position_m).norm() > reach) return 0.0;
+  int inside = 0;
+  for (int i = 0; i < 16; ++i) {
+    for (int j = 0; j < 16; ++j) {
+      const Eigen::Vector2d local(((i + 0.5) / 16 - 0.5) * size_a.x(), ((j + 0.5) / 16 - 0.5) * size_a.y());
+      inside += InFootprint(a.position_m + Rotated(local, a.yaw_deg), b, size_b);
+    }
+  }
+  return inside / 256.0;
+}
+
+// How much a floor piece and the other floor pieces cover of each other:
+// the largest share of either footprint inside the other's.
+double FloorOverlap(const FurniturePiece& piece, const std::vector<FurniturePiece>& others) {
+  double largest = 0.0;
+  if (piece.elevation_m != 0.0) return largest;
+  for (const FurniturePiece& other : others) {
+    if (other.elevation_m != 0.0) continue;
+    largest = std::max({largest, ShareInside(piece, other), ShareInside(other, piece)});
+  }
+  return largest;
+}
+
+// The pieces around place `index` while it is drawn: the ones drawn before
+// it and the default pieces of the places after it.
+std::vector<FurniturePiece> Neighbours(const std::vector<Place>& places, const std::vector<FurniturePiece>& drawn,
+                                       size_t index) {
+  std::vector<FurniturePiece> out(drawn.begin(), drawn.begin() + static_cast<std::ptrdiff_t>(index));
+  for (size_t k = index + 1; k < places.size(); ++k) out.push_back(places[k].piece);
+  return out;
+}
+
 std::vector<Place> DefaultPlaces() {
   const std::vector<RoomFloor> floors = ApartmentRoomFloors();
   const std::vector<RouteWaypoint> route = ApartmentPatrolRoute();
@@ -102,12 +150,14 @@ std::vector<Place> DefaultPlaces() {
     if (p.support) places[*p.support].carries = true;
     places.push_back(p);
   }
+  for (size_t i = 0; i < places.size(); ++i) {
+    std::vector<FurniturePiece> others;
+    for (size_t k = 0; k < places.size(); ++k) {
+      if (k != i) others.push_back(places[k].piece);
+    }
+    places[i].overlap = FloorOverlap(places[i].piece, others) + 0.05;
+  }
   return places;
-}
-
-Eigen::Vector2d Rotated(const Eigen::Vector2d& v, double yaw_deg) {
-  const double a = yaw_deg * kPi / 180.0;
-  return {std::cos(a) * v.x() - std::sin(a) * v.y(), std::sin(a) * v.x() + std::cos(a) * v.y()};
 }
 
 // The models of the place's group that fit its footprint.
@@ -160,8 +210,13 @@ FurniturePiece OnSupport(const Place& place, const Place& support, const Furnitu
   return piece;
 }
 
-bool Acceptable(const Place& place, const FurniturePiece& piece, const std::vector<RouteWaypoint>& route) {
+// Inside its room, below the ceiling, off the route, and overlapping the
+// floor pieces around it no more than the default piece did.
+bool Acceptable(const std::vector<Place>& places, const FurniturePiece& piece, const std::vector<FurniturePiece>& drawn,
+                size_t index, const std::vector<RouteWaypoint>& route) {
+  const Place& place = places[index];
   const Eigen::Vector3d size = TrainingFurnitureSize(piece.model);
+  if (FloorOverlap(piece, Neighbours(places, drawn, index)) > place.overlap) return false;
   const Eigen::Vector2d half = FootprintHalfExtentsM(piece, size);
   const bool inside = ((piece.position_m - half - place.floor.min_xy).array() >= -1e-9).all() &&
                       ((place.floor.max_xy - piece.position_m - half).array() >= -1e-9).all();
@@ -201,7 +256,7 @@ FurniturePiece DrawPlace(const std::vector<Place>& places, const std::vector<Fur
   const Place& place = places[index];
   for (int t = 0; t < kTries; ++t) {
     const std::optional<FurniturePiece> piece = DrawOnce(places, drawn, index, rng);
-    if (piece && Acceptable(place, *piece, route)) return *piece;
+    if (piece && Acceptable(places, *piece, drawn, index, route)) return *piece;
   }
   if (!place.support) return place.piece;
   FurniturePiece piece = OnSupport(place, places[*place.support], drawn[*place.support], {0.0, 0.0}, 0.0);

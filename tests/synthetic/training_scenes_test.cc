@@ -1,8 +1,10 @@
 #include "slam/synthetic/training_scenes.h"
 
+#include <cmath>
 #include <filesystem>
 #include <set>
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include "slam/core/check.h"
@@ -257,6 +259,39 @@ TEST(TrainingScenes, FurnitureStaysInItsRoomAndOffTheRoute) {
       }
       EXPECT_GE(RouteClearanceM(p, TrainingFurnitureSize(p.model), route), asked - 0.006) << p.model;
     }
+  }
+}
+
+// The largest share of a floor piece's footprint (a 32 x 32 grid) inside
+// another floor piece's.
+double LargestFloorOverlap(const std::vector<FurniturePiece>& pieces) {
+  double largest = 0.0;
+  for (const FurniturePiece& p : pieces) {
+    for (const FurniturePiece& q : pieces) {
+      if (&q == &p || p.elevation_m != 0.0 || q.elevation_m != 0.0) continue;
+      const Eigen::Vector3d size = TrainingFurnitureSize(p.model), q_size = TrainingFurnitureSize(q.model);
+      int inside = 0;
+      for (int i = 0; i < 32; ++i) {
+        for (int j = 0; j < 32; ++j) {
+          const Eigen::Vector2d local(((i + 0.5) / 32 - 0.5) * size.x(), ((j + 0.5) / 32 - 0.5) * size.y());
+          const Eigen::Vector2d point = p.position_m + Eigen::Rotation2Dd(p.yaw_deg * M_PI / 180.0) * local;
+          const Eigen::Vector2d in_q = Eigen::Rotation2Dd(-q.yaw_deg * M_PI / 180.0) * (point - q.position_m);
+          inside += std::abs(in_q.x()) <= 0.5 * q_size.x() && std::abs(in_q.y()) <= 0.5 * q_size.y();
+        }
+      }
+      largest = std::max(largest, inside / 1024.0);
+    }
+  }
+  return largest;
+}
+
+// Chairs stay tucked at their table, not in it: no floor piece covers much
+// more of the others than the default arrangement's pieces do.
+TEST(TrainingScenes, FloorPiecesOverlapNoMoreThanTheDefaultOnes) {
+  const double default_overlap = LargestFloorOverlap(DefaultFurniturePieces());
+  EXPECT_LT(default_overlap, 0.2);
+  for (uint64_t seed = 1; seed <= 100; ++seed) {
+    EXPECT_LE(LargestFloorOverlap(DrawTrainingFurniture(seed)), default_overlap + 0.1) << "seed " << seed;
   }
 }
 
