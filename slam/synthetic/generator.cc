@@ -57,9 +57,8 @@ GeneratedSessionSummary GenerateSession(const GeneratorConfig& config, const Sce
                                const std::string& folder, SessionPreview* preview) {
   Stopwatch watch;
   const SessionSpec& spec = config.sessions[index];
-  const uint64_t seed = DeriveSeed(config.seed, 100 + index);
-  std::vector<TimedPose> route = GenerateRoute(config.route, ApartmentPatrolRoute(), DeriveSeed(seed, 10));
-  if (config.max_frames > 0 && static_cast<int>(route.size()) > config.max_frames) route.resize(config.max_frames);
+  const uint64_t seed = GeneratorSessionSeed(config, index);
+  const std::vector<TimedPose> route = GeneratorSessionRoute(config, index);
   std::vector<Rigid3d> world_from_camera;
   std::vector<double> times;
   for (const TimedPose& p : route) {
@@ -67,8 +66,8 @@ GeneratedSessionSummary GenerateSession(const GeneratorConfig& config, const Sce
     times.push_back(p.time_s);
   }
   const std::vector<Rigid3d> odometry = SimulateOdometry(config.odometry, world_from_camera, times, DeriveSeed(seed, 11));
-  SessionSimulator simulator(config, scene, ParseClockTime(spec.clock_time, "sessions." + spec.name), DeriveSeed(seed, 12));
-  simulator.Settle(world_from_camera.front(), 12);
+  const std::unique_ptr<SessionSimulator> started = StartSessionSimulator(config, scene, index, world_from_camera.front());
+  SessionSimulator& simulator = *started;
   TumCalibration calibration;
   calibration.camera = config.camera.Intrinsics();
   calibration.depth_scale = 1000.0;
@@ -107,6 +106,33 @@ GeneratedSessionSummary GenerateSession(const GeneratorConfig& config, const Sce
 
 }  // namespace
 
+ApartmentOptions GeneratorSceneOptions(const GeneratorConfig& config) {
+  ApartmentOptions scene_options = config.scene;
+  scene_options.seed = DeriveSeed(config.seed, 1);
+  return scene_options;
+}
+
+Scene BuildGeneratorScene(const GeneratorConfig& config) { return BuildApartment(GeneratorSceneOptions(config)); }
+
+uint64_t GeneratorSessionSeed(const GeneratorConfig& config, size_t index) { return DeriveSeed(config.seed, 100 + index); }
+
+std::vector<TimedPose> GeneratorSessionRoute(const GeneratorConfig& config, size_t index) {
+  std::vector<TimedPose> route =
+      GenerateRoute(config.route, ApartmentPatrolRoute(), DeriveSeed(GeneratorSessionSeed(config, index), 10));
+  if (config.max_frames > 0 && static_cast<int>(route.size()) > config.max_frames) route.resize(config.max_frames);
+  return route;
+}
+
+std::unique_ptr<SessionSimulator> StartSessionSimulator(const GeneratorConfig& config, const Scene& scene,
+                                                        size_t index, const Rigid3d& first_world_from_camera) {
+  const SessionSpec& spec = config.sessions[index];
+  auto simulator = std::make_unique<SessionSimulator>(config, scene,
+                                                      ParseClockTime(spec.clock_time, "sessions." + spec.name),
+                                                      DeriveSeed(GeneratorSessionSeed(config, index), 12));
+  simulator->Settle(first_world_from_camera, 12);
+  return simulator;
+}
+
 double SessionStartTimestamp(const SessionSpec& session) {
   return ParseClockTime(session.clock_time, "sessions." + session.name) * 3600.0;
 }
@@ -115,9 +141,7 @@ GenerateSummary GenerateDataset(const GeneratorConfig& config, const GenerateOpt
   config.Check();
   Stopwatch watch;
   StagedFolder staged(options.output_path, options.overwrite, OwnedDataset());
-  ApartmentOptions scene_options = config.scene;
-  scene_options.seed = DeriveSeed(config.seed, 1);
-  const Scene scene = BuildApartment(scene_options);
+  const Scene scene = BuildGeneratorScene(config);
 
   GenerateSummary summary;
   summary.sessions.resize(config.sessions.size());

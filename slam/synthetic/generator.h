@@ -6,10 +6,16 @@
 // for any thread count.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "slam/synthetic/generator_config.h"
+#include "slam/synthetic/scene/scene.h"
+#include "slam/synthetic/sensor/route.h"
+#include "slam/synthetic/session_simulator.h"
 
 namespace duskmap {
 
@@ -38,6 +44,20 @@ struct GenerateSummary {
 };
 
 GenerateSummary GenerateDataset(const GeneratorConfig& config, const GenerateOptions& options);
+
+// The apartment a config renders: config.scene with its texture seed derived
+// from config.seed (the seed that ApartmentOptions::seed holds when built).
+ApartmentOptions GeneratorSceneOptions(const GeneratorConfig& config);
+Scene BuildGeneratorScene(const GeneratorConfig& config);
+
+// Session `index` of config.sessions: its seed, its route's ground-truth
+// poses (the first config.max_frames when set), and its simulator at the
+// session's clock time with the camera settled on `first_world_from_camera`,
+// as the generator records it.
+uint64_t GeneratorSessionSeed(const GeneratorConfig& config, size_t index);
+std::vector<TimedPose> GeneratorSessionRoute(const GeneratorConfig& config, size_t index);
+std::unique_ptr<SessionSimulator> StartSessionSimulator(const GeneratorConfig& config, const Scene& scene,
+                                                        size_t index, const Rigid3d& first_world_from_camera);
 
 // Seconds of the local day at which a session's first frame is recorded.
 double SessionStartTimestamp(const SessionSpec& session);
