@@ -3,6 +3,7 @@
 // scored by epipolar geometry (JSON + Markdown).
 // `duskmap features export`: a dataset's features in hloc's HDF5 layout, and
 // the list of its images for an external extractor (docs/features.md).
+// `duskmap features training-data`: training_data_command.cc.
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -13,6 +14,7 @@
 #include <opencv2/core/utility.hpp>
 
 #include "experiments/command_registry.h"
+#include "experiments/commands/training_data_command.h"
 #include "slam/core/check.h"
 #include "slam/core/json_fields.h"
 #include "slam/datasets/dataset_factory.h"
@@ -275,15 +277,17 @@ RunFn SetupFeatures(CLI::App& command) {
   exporter->add_flag("--overwrite", export_args->overwrite,
                      "replace an existing export (only a duskmap export) or image list");
   CLI::Option* type_option = exporter->get_option("--type");
-  return [args, eval, export_args, exporter, type_option] {
+  const auto [training, run_training] = AddTrainingDataCommand(command);
+  return [args, eval, export_args, exporter, type_option, training = training, run_training = run_training] {
     if (exporter->parsed()) return RunExport(*export_args, type_option->count() > 0);
-    SLAM_THROW_IF_NOT(ConfigError, eval->parsed()) << "features: expected a subcommand (eval, export)";
+    if (training->parsed()) return run_training();
+    SLAM_THROW_IF_NOT(ConfigError, eval->parsed()) << "features: expected a subcommand (eval, export, training-data)";
     return RunEval(*args);
   };
 }
 
 const bool kRegistered = RegisterCommand(
-    {"features", "Evaluate feature extractors on real image sequences; export features in hloc's HDF5 layout", &SetupFeatures});
+    {"features", "Evaluate feature extractors on real image sequences; export features in hloc's HDF5 layout; render training pairs", &SetupFeatures});
 
 }  // namespace
 }  // namespace duskmap::cli
