@@ -9,6 +9,11 @@
 // SuperPoint is timed when DUSKMAP_SUPERPOINT_ONNX names a model file, the
 // generic onnx type when DUSKMAP_ONNX_FEATURES names a JSON file of
 // features.onnx options (its model and contract).
+// Describe/sift and Describe/dusknet: the descriptor time alone on the same
+// 1,000 SIFT keypoints of the frame (detected once, outside the timing; one
+// thread): cv::SIFT's compute (which builds its own scale space) beside the
+// dusknet type's patches and network (its embedded model, or the file that
+// DUSKMAP_DUSKNET_ONNX names, e.g. a training candidate).
 // ImportH5: the h5 type reading one frame's features (1000 keypoints with
 // 128-D float32 or 32-byte binary descriptors and scores, hloc's layout) from
 // a 100-frame file, with 3D points from a 640x480 depth image.
@@ -30,6 +35,8 @@
 #include "slam/features/feature_factory.h"
 #include "slam/features/feature_options_json.h"
 #include "slam/features/h5_feature_file.h"
+#include "slam/features/onnx_patch_extractor.h"
+#include "slam/features/opencv_extractors.h"
 #include "slam/features/superglue.h"
 
 namespace duskmap {
@@ -79,6 +86,33 @@ void BM_Extract(benchmark::State& state, const std::string& type, bool kaze_sing
     benchmark::DoNotOptimize(f.descriptors.data);
   }
   state.counters["keypoints"] = static_cast<double>(keypoints);
+}
+
+// The descriptor time of `type` (sift or dusknet) on the frame's strongest
+// 1,000 SIFT keypoints, detected before the timing.
+void BM_Describe(benchmark::State& state, const std::string& type) {
+  cv::setNumThreads(1);
+  FeatureOptions options;
+  options.max_features = 1000;
+  options.type = FeatureTypeName(FeatureTypeId::kDuskNet);
+  if (const char* model = std::getenv("DUSKMAP_DUSKNET_ONNX")) options.dusknet.model_path = model;
+  cv::Mat gray;
+  cv::cvtColor(Frame(), gray, cv::COLOR_BGR2GRAY);
+  const cv::Ptr<cv::Feature2D> sift = CreateSiftFeature2D(options.sift, options.max_features);
+  const std::vector<cv::KeyPoint> keypoints = DetectStrongest(*sift, gray, options.max_features);
+  const auto extractor = CreateFeatureExtractor(options);
+  const auto& dusknet = dynamic_cast<const OnnxPatchExtractor&>(*extractor);
+  for (auto _ : state) {
+    cv::Mat descriptors;
+    if (type == "sift") {
+      std::vector<cv::KeyPoint> described = keypoints;
+      sift->compute(gray, described, descriptors);
+    } else {
+      descriptors = dusknet.Describe(gray, keypoints);
+    }
+    benchmark::DoNotOptimize(descriptors.data);
+  }
+  state.counters["keypoints"] = static_cast<double>(keypoints.size());
 }
 
 FrameFeatures RandomSuperPointLike(int count, uint64_t seed) {
@@ -173,6 +207,12 @@ const bool kRegistered = [] {
   benchmark::RegisterBenchmark("Extract/kaze/single_pass", BM_Extract, std::string("kaze"), true)
       ->Unit(benchmark::kMillisecond)
       ->UseRealTime();
+  for (const char* type : {"sift", "dusknet"}) {
+    benchmark::RegisterBenchmark((std::string("Describe/") + type).c_str(), BM_Describe,
+                                 std::string(type))
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+  }
   if (std::getenv("DUSKMAP_SUPERGLUE_ONNX") != nullptr) {
     benchmark::RegisterBenchmark("SuperGlueMatch", BM_SuperGlueMatch)
         ->Arg(1000)
