@@ -72,7 +72,8 @@ class SharedFeatureCache {
   static constexpr const char* kSummaryFile = "summary.json";  // a job's (ReadExtractJobSummary)
 
  private:
-  // {path: checksum} of the files the inputs' feature type reads.
+  // {path: checksum} of the files the inputs' feature type reads, and of the
+  // model embedded in the program that it runs (EmbeddedModelChecksums).
   nlohmann::json FileChecksumsOf(const FeatureCacheInputs& inputs) const;
 
   SharedFeatureCacheOptions options_;

@@ -47,6 +47,20 @@ TEST(FileChecksumTest, AnyByteChangedAtTheSameSizeChangesTheChecksum) {
   EXPECT_NE(FileChecksum64(dir / "empty.bin"), FileChecksum64(dir / "zero.bin"));
 }
 
+// Bytes in memory (an embedded model) get the checksum a file of them gets,
+// at any size: empty, within one block, exactly one block, several and a tail.
+TEST(FileChecksumTest, BytesInMemoryChecksumAsTheirFile) {
+  const fs::path dir = testing::ProcessTempDir("bytes_checksum");
+  for (const size_t size : {size_t{0}, size_t{100}, size_t{1} << 20, (size_t{5} << 19) + 17}) {
+    std::string bytes(size, '\0');
+    for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<char>(i * 131 % 251);
+    WriteBytes(dir / "b.bin", bytes);
+    EXPECT_EQ(BytesChecksum64(bytes.data(), bytes.size()), FileChecksum64(dir / "b.bin")) << size;
+  }
+  EXPECT_NE(BytesChecksum64("ab", 2), BytesChecksum64("ba", 2));
+  fs::remove_all(dir);
+}
+
 TEST(FileChecksumTest, UnreadableInputsAreOneLineErrorsNamingThem) {
   const fs::path dir = testing::ProcessTempDir("file_checksum_errors");
   const std::string missing = testing::ErrorOf([&] { FileChecksum64(dir / "none.bin"); });
