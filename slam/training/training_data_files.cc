@@ -52,7 +52,7 @@ int64_t FileBytes(const fs::path& path) {
 }
 
 TrainingDataFile ExpectedFile(const char* name, const TrainingDataManifest& manifest) {
-  const int64_t p = manifest.data.patch.patch_size_px;
+  const int64_t p = manifest.patch.patch_size_px;
   if (std::string(name) == kTrainingPatchesFile) {
     return {name, "uint8", {manifest.pairs, 2, p, p}, manifest.pairs * 2 * p * p};
   }
@@ -62,6 +62,8 @@ TrainingDataFile ExpectedFile(const char* name, const TrainingDataManifest& mani
 // The manifest's own consistency: files as the pairs and patch size give
 // them, the scenes' pairs contiguous and adding up.
 void CheckManifest(const TrainingDataManifest& manifest, const std::string& path) {
+  SLAM_THROW_IF_NOT(InputError, ToJsonObject(manifest.patch) == ToJsonObject(manifest.data.patch))
+      << path << ": patch differs from data.patch";
   SLAM_THROW_IF_NOT(InputError, manifest.files.size() == 2) << path << ": expected 2 files, got " << manifest.files.size();
   const char* names[] = {kTrainingPatchesFile, kTrainingPointsFile};
   for (size_t i = 0; i < 2; ++i) {
@@ -104,13 +106,14 @@ TrainingDataWriter::TrainingDataWriter(const std::string& final_path, bool overw
     : staged_(final_path, overwrite, OwnedTrainingData()) {
   options.Check();
   manifest_.data = options;
+  manifest_.patch = options.patch;
   OpenForWriting(staged_.staging_path() + "/" + kTrainingPatchesFile, &patches_);
   OpenForWriting(staged_.staging_path() + "/" + kTrainingPointsFile, &points_);
 }
 
 void TrainingDataWriter::Append(const TrainingScene& scene, const ScenePairs& pairs) {
   CheckHeldOut(scene);
-  const int64_t p = manifest_.data.patch.patch_size_px;
+  const int64_t p = manifest_.patch.patch_size_px;
   SLAM_CHECK(scene.index == pairs.scene_index && scene.index == static_cast<int>(manifest_.scenes.size()));
   SLAM_CHECK(static_cast<int64_t>(pairs.patches.size()) == pairs.pairs * 2 * p * p &&
              static_cast<int64_t>(pairs.points_in_world.size()) == pairs.pairs * 3);

@@ -3,7 +3,7 @@
 //   patches.u8    pairs x 2 x P x P bytes: each pair's patch in A, then in B
 //   points.f32    pairs x 3 float32 (little-endian), metres: the pair's world point
 //   manifest.json written last: format, version, the "data" options it was
-//                 made with, each scene (seeds, date, clock times, split,
+//                 made with, the patch sampler's options, each scene (seeds, date, clock times, split,
 //                 first pair and count), the totals and both files' sizes.
 // The writer stages the folder and publishes it whole (io/folder_commit.h);
 // the reader refuses an incomplete folder or another format or version
@@ -49,7 +49,8 @@ struct TrainingDataFile {
 };
 
 struct TrainingDataManifest {
-  TrainingDataOptions data;  // written without "threads" (the output does not depend on it)
+  TrainingDataOptions data;   // written without "threads" (the output does not depend on it)
+  PatchSamplerOptions patch;  // the patches' sampler: data.patch, where readers look first
   std::vector<TrainingSceneRecord> scenes;
   int64_t pairs = 0;
   int64_t train_pairs = 0;

@@ -41,6 +41,7 @@ struct JsonCodec<TrainingDataManifest> {
   template <typename F, typename O>
   static void Visit(F& f, O& o) {
     f("data", o.data, JsonRequired{});
+    f("patch", o.patch, JsonRequired{});
     f("scenes", o.scenes, JsonRequired{});
     f("pairs", o.pairs, JsonRequired{});
     f("train_pairs", o.train_pairs, JsonRequired{});

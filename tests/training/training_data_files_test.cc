@@ -70,6 +70,7 @@ TEST(TrainingDataFiles, RoundTrip) {
   EXPECT_EQ(data.manifest.scenes[1].seed, 5001u);
   EXPECT_EQ(data.manifest.scenes[1].texture_seed, SceneTextureSeed(HeldOutScene(1).config));
   EXPECT_EQ(data.manifest.data.patch.patch_size_px, 8);
+  EXPECT_EQ(data.manifest.patch.patch_size_px, 8);
   EXPECT_EQ(data.manifest.files[0].shape, (std::vector<int64_t>{5, 2, 8, 8}));
   std::vector<uint8_t> patches = FakePairs(0, 2, 8).patches;
   const std::vector<uint8_t> last = FakePairs(2, 3, 8).patches;
@@ -139,6 +140,10 @@ TEST(TrainingDataFiles, RefusesASizeMismatch) {
     EditManifest(p, [](nlohmann::json* j) { (*j)["pairs"] = 6; });
   });
   EXPECT_NE(error.find("manifest.json: files[0] is not patches.u8"), std::string::npos) << error;
+  error = ErrorAfter("patch", [](const std::string& p) {
+    EditManifest(p, [](nlohmann::json* j) { (*j)["patch"]["patch_size_px"] = 16; });
+  });
+  EXPECT_NE(error.find("manifest.json: patch differs from data.patch"), std::string::npos) << error;
   error = ErrorAfter("scene_pairs", [](const std::string& p) {
     EditManifest(p, [](nlohmann::json* j) { (*j)["scenes"][1]["pairs"] = 1; });
   });
