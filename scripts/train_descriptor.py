@@ -21,7 +21,8 @@ normalisation. Exported as ONNX (opset 11, constants folded) for OpenCV 4.6's DN
 which the export checks against torch. Refuses to replace a model it did not write.
 
 Writes beside the model: <stem>_training_log.jsonl (hyper-parameters, then one line per
-epoch) and <stem>_data_manifest.json (the training data's manifest).
+epoch), <stem>_data_manifest.json (the training data's manifest) and <stem>_reference.json
+(16 validation patches and the exported model's descriptors of them, for the C++ test).
 """
 
 import argparse
@@ -249,7 +250,20 @@ def export_onnx(torch, net, path, metadata, check_patches):
         os.remove(staging)
         raise TrainingError(f"{path}: OpenCV's DNN differs from torch by {difference:g}")
     os.replace(staging, path)
-    return difference
+    return difference, cv_out
+
+
+def write_reference(path, patches_u8, descriptors):
+    """A fixed patch set and the model's descriptors of it, for the C++ test that catches an
+    accidental change of the committed model (tests/features/dusknet_model_test.cc)."""
+    reference = {"model": os.path.basename(path.replace("_reference.json", ".onnx")),
+                 "patch_size_px": int(patches_u8.shape[-1]),
+                 "source": "the first validation pairs' A patches (generated scenes)",
+                 "patches": [p.reshape(-1).tolist() for p in patches_u8],
+                 "descriptors": [[round(float(v), 7) for v in d] for d in descriptors]}
+    with open(path, "w", encoding="utf-8") as f:
+        json.dump(reference, f, separators=(",", ":"))
+        f.write("\n")
 
 
 def check_output_is_ours(path):
@@ -362,7 +376,8 @@ def train(args):
     metadata = {"producer": PRODUCER, "epoch": str(best_epoch),
                 "config_sha256": sha256_of(args.config), "data_manifest_sha256": header["data_manifest_sha256"],
                 "contract": "patch: N x 1 x 32 x 32 float (patch / 255), output N x D L2-normalised"}
-    difference = export_onnx(torch, net, args.out, metadata, val_patches[:256, 0])
+    difference, cv_descriptors = export_onnx(torch, net, args.out, metadata, val_patches[:256, 0])
+    write_reference(stem + "_reference.json", val_patches[:16, 0], cv_descriptors[:16])
     summary = {"kept_epoch": best_epoch, "validation_accuracy": best_accuracy,
                "opencv_max_difference": difference, "training_s": round(time.time() - started, 1),
                "model_bytes": os.path.getsize(args.out)}

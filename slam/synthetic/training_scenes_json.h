@@ -1,5 +1,5 @@
 // The JSON codec of the training scenes' options (slam/core/json_codec.h):
-//   {"seed": 20261207, "scenes": 10, "hours_per_scene": 4, "frames_per_hour": 48}
+//   {"seed": 20261207, "scenes": 10, "hours_per_scene": 4, "frames_per_hour": 96}
 // Every key is optional (absent keys keep the defaults of training_scenes.h).
 #pragma once
 

@@ -131,6 +131,13 @@ class TrainDescriptorTest(unittest.TestCase):
         self.assertEqual([e["epoch"] for e in lines[1:-1]], [1, 2])
         self.assertGreater(lines[-1]["validation_accuracy"], 0.5)  # the pairs are learnable
         self.assertTrue(os.path.isfile(os.path.join(self.dir, "curve.png")))
+        with open(os.path.join(self.dir, "model_reference.json")) as f:
+            reference = json.load(f)
+        self.assertEqual(len(reference["patches"]), 16)
+        self.assertEqual(len(reference["patches"][0]), 32 * 32)
+        patches = np.array(reference["patches"], dtype=np.float32).reshape(16, 1, 32, 32) / 255.0
+        net.setInput(patches)
+        np.testing.assert_allclose(net.forward(), np.array(reference["descriptors"]), atol=1e-5)
         self.assertEqual(self.run_script().returncode, 0)  # replaces a model it wrote
 
 
