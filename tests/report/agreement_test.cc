@@ -1,5 +1,7 @@
 #include "slam/report/agreement.h"
 
+#include <map>
+
 #include <gtest/gtest.h>
 
 #include "slam/report/report_table_ids.h"
@@ -199,6 +201,41 @@ TEST(ComputeAgreement, FindingsDecidedByTheirRules) {
   EXPECT_EQ(agreement.findings[2].verdict, FindingVerdict::kNotReproduced);
   EXPECT_NE(agreement.findings[2].measured.find("2/3"), std::string::npos)
       << agreement.findings[2].measured;
+}
+
+// DN (duskmap's learned descriptor, FeatureType::learned) is the learned
+// feature of the robustness finding: it must have the highest single-map mean
+// when it ran, and is never the "lowest hand-crafted" one.
+TEST(ComputeAgreement, DuskNetIsTheLearnedFeatureOfTheRobustnessFinding) {
+  const std::vector<std::string> findings = {
+      "SuperPoint (with or without SuperGlue) is the most robust to illumination change; ..."};
+  const std::vector<std::string> features = {"SU", "SI", "BK", "DN"};
+  auto table = [&](double dn_pct) {
+    ReportTable t(kTableRelocalizationPct, "Re-localization (%)", kRows, features);
+    const std::map<std::string, double> pct = {{"SU", 70}, {"SI", 75}, {"BK", 60}, {"DN", dn_pct}};
+    for (const std::string& row : kRows) {
+      for (const auto& [feature, value] : pct) {
+        t.SetMeasured(row, feature, value);
+        if (feature != "DN") t.SetPaper(row, feature, value);  // the paper has no DN column
+      }
+    }
+    return t;
+  };
+  AgreementReport agreement = ComputeAgreement({table(80)}, Matrix(true), Paper(findings));
+  ASSERT_EQ(agreement.findings.size(), 1u);
+  EXPECT_EQ(agreement.findings[0].verdict, FindingVerdict::kReproduced)
+      << agreement.findings[0].measured;
+  EXPECT_NE(agreement.findings[0].measured.find("highest: DN 80.0"), std::string::npos)
+      << agreement.findings[0].measured;
+  // DN below SIFT: a hand-crafted feature is the most robust.
+  agreement = ComputeAgreement({table(72)}, Matrix(true), Paper(findings));
+  EXPECT_EQ(agreement.findings[0].verdict, FindingVerdict::kNotReproduced)
+      << agreement.findings[0].measured;
+  // DN lowest of all: still not the "lowest hand-crafted" feature (BK is).
+  agreement = ComputeAgreement({table(50)}, Matrix(true), Paper(findings));
+  EXPECT_NE(agreement.findings[0].measured.find("lowest hand-crafted single-map mean: BK"),
+            std::string::npos)
+      << agreement.findings[0].measured;
 }
 
 TEST(ComputeAgreement, NoWrongRelocalizationNeedsGroundTruth) {
