@@ -13,6 +13,9 @@ a reference. It is untrained: its descriptors are random projections.
   --input-size S        declares NxSxS instead of PxP (breaks it for S != P)
   --output-rank3        output NxDx1 instead of NxD (breaks it)
   --nan                 a NaN bias: every output value is NaN (breaks it)
+  --global-pool         GlobalAveragePool before the Gemm (W is D x C): the
+                        network runs on any patch size, so only its declared
+                        input size can break the contract
 
 Usage: make_test_onnx_patch.py OUT.onnx [--patch P] [--dims D] [--seed N] [flags]
 Needs Debian's python3-onnx and python3-numpy.
@@ -26,15 +29,17 @@ from onnx import TensorProto, helper, numpy_helper
 
 def build(args):
     size = args.input_size or args.patch
-    inputs_per_patch = args.input_channels * size * size
+    inputs_per_patch = args.input_channels * (1 if args.global_pool else size * size)
     rng = np.random.default_rng(args.seed)
     w = (rng.standard_normal((args.dims, inputs_per_patch)) / np.sqrt(inputs_per_patch)).astype(np.float32)
     b = (rng.standard_normal(args.dims) * 0.1).astype(np.float32)
     if args.nan:
         b[:] = np.nan
     inits = [numpy_helper.from_array(w, "W"), numpy_helper.from_array(b, "b")]
-    nodes = [helper.make_node("Flatten", ["patches"], ["flat"], axis=1),
+    nodes = [helper.make_node("Flatten", ["pooled" if args.global_pool else "patches"], ["flat"], axis=1),
              helper.make_node("Gemm", ["flat", "W", "b"], ["projected"], transB=1)]
+    if args.global_pool:
+        nodes.insert(0, helper.make_node("GlobalAveragePool", ["patches"], ["pooled"]))
     last = "projected"
     out_shape = ["N", args.dims]
     if args.output_rank3:
@@ -66,6 +71,7 @@ def main():
     parser.add_argument("--input-size", type=int, default=0)
     parser.add_argument("--output-rank3", action="store_true")
     parser.add_argument("--nan", action="store_true")
+    parser.add_argument("--global-pool", action="store_true")
     args = parser.parse_args()
     model, w, b = build(args)
     onnx.save(model, args.out)

@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "slam/core/check.h"
 #include "slam/core/input_file.h"
 #include "slam/features/dense_feature_maps.h"
 #include "slam/features/embedded_model.h"
+#include "slam/features/onnx_declared_input.h"
 #include "slam/features/opencv_extractors.h"
 
 namespace duskmap {
@@ -50,23 +52,45 @@ OnnxPatchExtractor::OnnxPatchExtractor(const OnnxFeatureOptions& options, const 
 
 void OnnxPatchExtractor::ReadModel() {
   const std::string& path = options_.model_path;
+  std::string file_bytes;  // a model file's bytes, read once
+  const char* bytes = nullptr;
+  size_t size = 0;
+  if (path.empty()) {
+    const EmbeddedModel& model = EmbeddedDuskNetModel();
+    model_name_ = model.name;
+    bytes = model.bytes;
+    size = model.size;
+  } else {
+    model_name_ = path;
+    RefuseNonRegularFile(path);  // before opening: a FIFO would block
+    std::ifstream in(path, std::ios::binary);
+    SLAM_THROW_IF_NOT(InputError, in.good()) << path << ": ONNX model not found";
+    file_bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    SLAM_THROW_IF_NOT(InputError, !in.bad()) << path << ": cannot read the ONNX model";
+    bytes = file_bytes.data();
+    size = file_bytes.size();
+  }
   try {
-    if (path.empty()) {
-      const EmbeddedModel& model = EmbeddedDuskNetModel();
-      model_name_ = model.name;
-      net_ = cv::dnn::readNetFromONNX(model.bytes, model.size);
-    } else {
-      model_name_ = path;
-      RefuseNonRegularFile(path);  // before opening: a FIFO would block
-      SLAM_THROW_IF_NOT(InputError, std::ifstream(path).good()) << path << ": ONNX model not found";
-      net_ = cv::dnn::readNetFromONNX(path);
-    }
+    net_ = cv::dnn::readNetFromONNX(bytes, size);
   } catch (const cv::Exception&) {
     SLAM_THROW(InputError) << model_name_ << ": not a readable ONNX model";
   }
   SLAM_THROW_IF_NOT(InputError, !net_.empty()) << model_name_ << ": empty network";
+  CheckDeclaredInput(bytes, size);
   net_.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
   net_.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
+}
+
+void OnnxPatchExtractor::CheckDeclaredInput(const char* bytes, size_t size) const {
+  const auto input = ReadOnnxDeclaredInput(bytes, size);
+  if (!input || !input->has_shape) return;  // nothing declared: the check batch decides
+  const std::vector<int64_t>& d = input->dims;
+  const int64_t p = options_.patch_size_px;
+  const auto fixed_or = [](int64_t dim, int64_t want) { return dim < 0 || dim == want; };
+  SLAM_THROW_IF_NOT(InputError, d.size() == 4 && fixed_or(d[1], 1) && fixed_or(d[2], p) &&
+                                    fixed_or(d[3], p))
+      << model_name_ << ": the patch contract needs input Nx1xPxP with P = patch_size_px = " << p
+      << "; the model declares its input '" << input->name << "' as " << input->ToString();
 }
 
 cv::Mat OnnxPatchExtractor::RunBatch(const cv::Mat& patches) const {

@@ -5,10 +5,10 @@
 // descriptor network run through OpenCV's DNN module in batches of
 // batch_size: input Nx1xPxP float, value = (pixel * input_scale -
 // input_mean) / input_std; output NxD float, L2-normalised here. The model
-// is checked against the contract once, on a small batch of blank patches,
-// when the extractor is built. The dusknet type is this contract with the
-// model embedded in the library (embedded_model.h) unless model_path names a
-// file.
+// is checked against the contract once, when the extractor is built: its
+// declared input (onnx_declared_input.h), then a small batch of blank
+// patches. The dusknet type is this contract with the model embedded in the
+// library (embedded_model.h) unless model_path names a file.
 #pragma once
 
 #include <mutex>
@@ -48,6 +48,10 @@ class OnnxPatchExtractor : public FeatureExtractor {
 
  private:
   void ReadModel();
+  // InputError naming the model when its declared input (when it declares
+  // one) is not Nx1xPxP: a fully convolutional model runs on any P, so the
+  // check batch alone would not catch one made for another patch size.
+  void CheckDeclaredInput(const char* bytes, size_t size) const;
   // Rows of patch_size_px² 8-bit values -> one descriptor row each (not
   // normalised); InputError naming the model when the contract is broken.
   cv::Mat RunBatch(const cv::Mat& patches) const;
