@@ -134,8 +134,8 @@ RuleOutcome DiagonalRule(const Tables& t) {
 RuleOutcome RobustnessRule(const Tables& t, TableSide side) {
   RuleOutcome outcome;
   const std::vector<std::string> rows = SingleSessionRows(t.relocalization);
-  std::string lowest, highest;
-  double lowest_pct = 1e9, highest_pct = -1e9;
+  std::string lowest, highest, best_learned;
+  double lowest_pct = 1e9, highest_pct = -1e9, best_learned_pct = -1e9;
   bool learned = false;
   std::vector<std::string> features = t.features;
   features.insert(features.end(), t.own_learned.begin(), t.own_learned.end());
@@ -150,6 +150,10 @@ RuleOutcome RobustnessRule(const Tables& t, TableSide side) {
       highest_pct = *mean;
       highest = feature;
     }
+    if (IsLearned(feature) && *mean > best_learned_pct) {
+      best_learned_pct = *mean;
+      best_learned = feature;
+    }
     learned = learned || IsLearned(feature);
   }
   const bool binary = std::any_of(t.features.begin(), t.features.end(), IsBinary);
@@ -161,7 +165,10 @@ RuleOutcome RobustnessRule(const Tables& t, TableSide side) {
   outcome.numbers = "lowest hand-crafted single-map mean: " + lowest + " " +
                     FormatFixed(lowest_pct, 1) + " %; highest: " + highest + " " +
                     FormatFixed(highest_pct, 1) + " %" +
-                    (learned ? "" : " (no learned feature run)");
+                    (!learned ? " (no learned feature run)"
+                     : best_learned == highest
+                         ? ""
+                         : "; best learned: " + best_learned + " " + FormatFixed(best_learned_pct, 1) + " %");
   return outcome;
 }
 
