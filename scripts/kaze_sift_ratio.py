@@ -2,7 +2,7 @@
 """KAZE and SIFT keypoints per image with the paper's detector settings, and
 their ratio: how a set of images compares with the paper's apartment (KAZE
 640 / SIFT 770 features per frame) and with real photographs
-(docs/synthetic_dataset.md, "KAZE's features per frame against real
+(docs/calibration_log.md, "KAZE's features per frame against real
 photographs").
 
 OpenCV's KAZE (threshold 0.001, 4 octaves, 4 sublevels, PM_G2 diffusivity,

@@ -1,6 +1,6 @@
 // The dataset generator's models: named, dated value sets of the settings
 // that changed from one default dataset to the next (the calibration log,
-// docs/synthetic_dataset.md). A config selects one with "model" and sets
+// docs/calibration_log.md). A config selects one with "model" and sets
 // anything else on top; without "model" it starts from the default model,
 // which is also what GeneratorConfig's constructor gives. Each model
 // reproduces the bytes of the default dataset of its day.

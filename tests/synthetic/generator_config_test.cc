@@ -39,7 +39,7 @@ TEST(ReadGeneratorConfig, DefaultConfigFileIsValidAndMatchesThePaper) {
   EXPECT_EQ(config.scene.lamps.living_lamp_on_from, "17:54");
   EXPECT_EQ(config.scene.lamps.bedroom_ceiling_cd, 0.0);  // the optional ceiling lights are off
   EXPECT_EQ(config.scene.lamps.living_ceiling_cd, 0.0);
-  // Calibration run 22 (docs/synthetic_dataset.md): the sun per texel and the
+  // Calibration run 22 (docs/calibration_log.md): the sun per texel and the
   // image processor's noise reduction, then local contrast; run 23: the sun
   // per pixel on the furniture.
   EXPECT_TRUE(config.lighting.sun_per_texel);
