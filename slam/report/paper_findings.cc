@@ -378,7 +378,7 @@ RuleOutcome TimingRule(const Tables& t, TableSide side) {
   double detection_sum = 0.0, lcd_sum = 0.0, te_sum = 0.0;
   std::string fastest, smallest, fewest;
   double fastest_ms = 1e18, smallest_mb = 1e18, fewest_features = 1e18;
-  bool superpoint = false;  // the paper's learned feature; DN has SIFT's keypoints
+  bool learned = false;
   for (const std::string& feature : t.features) {
     const auto detection = CellValue(t.timing, kRowFeatureDetectionMs, feature, side);
     const auto lcd = CellValue(t.timing, kRowLcdSingleSessionMs, feature, side);
@@ -403,7 +403,7 @@ RuleOutcome TimingRule(const Tables& t, TableSide side) {
       fewest_features = *count;
       fewest = feature;
     }
-    superpoint = superpoint || feature == "SP" || feature == "SG";
+    learned = learned || IsLearned(feature);
   }
   if (features == 0) {
     outcome.numbers = "no per-frame times";
@@ -414,7 +414,7 @@ RuleOutcome TimingRule(const Tables& t, TableSide side) {
   // than on detection (15 ms).
   outcome.holds = detection_sum > lcd_sum && detection_sum > te_sum &&
                   (!brief || (fastest == "BF" && smallest == "BF")) &&
-                  (!superpoint || fewest == "SP" || fewest == "SG");
+                  (!learned || IsLearned(fewest));
   outcome.numbers =
       "detection, LCD, TE summed over the features: " + FormatFixed(detection_sum, 0) + ", " +
       FormatFixed(lcd_sum, 0) + ", " + FormatFixed(te_sum, 0) + " ms (detection the largest stage for " +
