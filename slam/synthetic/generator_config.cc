@@ -35,6 +35,8 @@ void GeneratorConfig::Check() const {
     SLAM_THROW_IF_NOT(ConfigError, name_ok) << "sessions: invalid session name '" << s.name << "'";
     SLAM_THROW_IF_NOT(ConfigError, names.insert(s.name).second) << "sessions: duplicate session name '" << s.name << "'";
     ParseClockTime(s.clock_time, "sessions." + s.name + ".clock_time");
+    SLAM_THROW_IF_NOT(ConfigError, s.day >= 0 && s.day <= 365)
+        << "sessions." << s.name << ".day must be in [0, 365], got " << s.day;
     SLAM_THROW_IF_NOT(ConfigError, s.role == "mapping" || s.role == "localization")
         << "sessions." << s.name << ".role must be \"mapping\" or \"localization\", got \"" << s.role << "\"";
   }

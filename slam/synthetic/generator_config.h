@@ -24,6 +24,11 @@ struct SessionSpec {
   std::string name;        // "1".."6", "A".."F"
   std::string clock_time;  // local "HH:MM"
   std::string role = "mapping";  // "mapping" or "localization"
+  // Days after lighting.day_of_year, [0, 365]: the session's date, whose
+  // sun's path lights it (past the year's end, the next year's; lamps keep
+  // their clock-time schedule) and whose first frame is at day * 86400 s +
+  // the clock time (SessionStartTimestamp). 0: lighting.day_of_year itself.
+  int day = 0;
 };
 
 struct GeneratorConfig;

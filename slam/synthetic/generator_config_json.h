@@ -227,6 +227,7 @@ struct JsonCodec<SessionSpec> {
     f("name", o.name, JsonRequired{});
     f("clock_time", o.clock_time, JsonRequired{});
     f("role", o.role);
+    f("day", o.day);
   }
 };
 

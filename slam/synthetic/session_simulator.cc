@@ -4,12 +4,19 @@
 
 namespace duskmap {
 
+LightingOptions LightingOnDay(const LightingOptions& options, int day) {
+  LightingOptions on_day = options;
+  on_day.site.day_of_year = DayOfYearAfter(options.site.day_of_year, day);
+  return on_day;
+}
+
 SessionSimulator::SessionSimulator(const GeneratorConfig& config, const Scene& scene,
-                                   double clock_time_h, uint64_t seed)
+                                   double clock_time_h, uint64_t seed, int day)
     : config_(config),
       scene_(scene),
-      lighting_(ComputeSessionLighting(config.lighting, scene, clock_time_h)),
-      radiance_(PrepareSessionRadiance(scene, lighting_, config.lighting)),
+      lighting_options_(LightingOnDay(config.lighting, day)),
+      lighting_(ComputeSessionLighting(lighting_options_, scene, clock_time_h)),
+      radiance_(PrepareSessionRadiance(scene, lighting_, lighting_options_)),
       renderer_(scene, config.camera.Intrinsics()),
       camera_(config.camera, DeriveSeed(seed, 1)),
       depth_noise_(DeriveSeed(seed, 2)) {}

@@ -124,6 +124,11 @@ TEST(ReadGeneratorConfig, EveryShippedGeneratorConfigLoads) {
   EXPECT_EQ(quick.camera.width, 480);
   EXPECT_EQ(quick.route.frame_rate_hz, 0.5);
   EXPECT_EQ(quick.sessions.size(), GeneratorConfig::DefaultSessions().size());
+  // The lifelong apartment: 48 mapping and 6 localization sessions on 10 days
+  // (tests/synthetic/session_days_test.cc has the rest).
+  const GeneratorConfig lifelong = ReadGeneratorConfig(configs + "lifelong_apartment.json");
+  EXPECT_EQ(lifelong.sessions.size(), 54u);
+  EXPECT_EQ(lifelong.sessions.back().day, 11);
 }
 
 TEST(ReadGeneratorConfig, ErrorsNameTheListItemAndTheDerivedSeed) {

@@ -306,6 +306,7 @@ SessionLighting ComputeSessionLighting(const LightingOptions& options, const Sce
                                        double clock_time_h) {
   SessionLighting l;
   l.clock_time_h = clock_time_h;
+  l.day_of_year = options.site.day_of_year;
   l.sun = ComputeSunPosition(options.site, clock_time_h);
   l.sun_direction_in_world = SunDirectionInWorld(l.sun);
   if (l.sun.elevation_deg > options.horizon_elevation_deg) {

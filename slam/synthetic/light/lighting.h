@@ -66,6 +66,7 @@ struct LightingOptions {
 // The light state of one session.
 struct SessionLighting {
   double clock_time_h = 0.0;
+  int day_of_year = 0;  // the date of the sun's path (LightingOptions::site)
   SunPosition sun;
   Eigen::Vector3d sun_direction_in_world = Eigen::Vector3d::UnitZ();
   cv::Vec3f sun_normal_lux_bgr = cv::Vec3f(0, 0, 0);  // direct normal, after glass; 0 when hidden

@@ -1,5 +1,6 @@
 #include "slam/synthetic/light/solar.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace duskmap {
@@ -7,6 +8,16 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
 }  // namespace
+
+int DayOfYearAfter(int day_of_year, int days) {
+  int year_length = std::max(365, day_of_year);
+  int day = day_of_year + std::max(0, days);
+  while (day > year_length) {
+    day -= year_length;
+    year_length = 365;
+  }
+  return day;
+}
 
 SunPosition ComputeSunPosition(const SolarSite& site, double local_time_h) {
   const double utc_h = local_time_h - site.utc_offset_h;

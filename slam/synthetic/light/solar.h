@@ -19,6 +19,12 @@ struct SunPosition {
   double azimuth_deg = 0.0;    // clockwise from north
 };
 
+// The day of the year `days` (>= 0) days after `day_of_year` (1..366):
+// past the year's end it wraps into the next year, taken to have 365 days
+// (day_of_year 366 is the last day of a leap year). `days` 0 returns
+// `day_of_year` itself.
+int DayOfYearAfter(int day_of_year, int days);
+
 // Sun position at a local clock time given in hours since midnight.
 SunPosition ComputeSunPosition(const SolarSite& site, double local_time_h);
 
