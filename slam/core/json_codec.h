@@ -276,7 +276,16 @@ class JsonCodecWriter {
 
   template <typename T>
   void operator()(const char* key, const T& value, JsonOmitEmpty) {
-    if (!value.empty()) (*this)(key, value);
+    if (!IsEmptyValue(value)) (*this)(key, value);
+  }
+
+  template <typename T>
+  static bool IsEmptyValue(const T& value) {
+    return value.empty();
+  }
+  template <typename T>
+  static bool IsEmptyValue(const std::optional<T>& value) {
+    return !value.has_value();
   }
 
   template <typename T>

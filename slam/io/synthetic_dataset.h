@@ -9,6 +9,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,9 @@ struct ManifestSession {
   std::string folder;      // relative to the dataset folder
   std::string clock_time;  // local "HH:MM"
   std::string role;        // "mapping" or "localization"
+  // The largest camera move between consecutive frames, metres; absent in
+  // datasets written before it was recorded.
+  std::optional<double> largest_step_m;
 };
 
 // A third-party asset the dataset's frames show (a furniture model), with

@@ -1,11 +1,13 @@
 // JSON codecs of a synthetic dataset's manifest.json (synthetic_dataset.h;
 // slam/core/json_codec.h):
 //   {"format": "duskmap-synthetic", "version": 1,
-//    "sessions": [{"name": "1", "folder": "1", "clock_time": "16:46", "role": "mapping"}, ...],
+//    "sessions": [{"name": "1", "folder": "1", "clock_time": "16:46", "role": "mapping",
+//                   "largest_step_m": 0.49}, ...],
 //    "assets": [{"name": "Bed", "source": "...", "creator": "...", "license": "..."}, ...]}
 // "format" and "version" are the file's, not the manifest's: WriteManifest
 // and ReadManifest add and check them. "assets" is left out when there are
-// none, as datasets were written before furniture models existed.
+// none, as datasets were written before furniture models existed, and
+// "largest_step_m" when not recorded (datasets written before 2026-12-07).
 #pragma once
 
 #include "slam/core/json_codec.h"
@@ -21,6 +23,7 @@ struct JsonCodec<ManifestSession> {
     f("folder", o.folder, JsonRequired{});
     f("clock_time", o.clock_time);
     f("role", o.role);
+    f("largest_step_m", o.largest_step_m, JsonOmitEmpty{});
   }
 };
 

@@ -34,19 +34,26 @@ void WriteSessionJson(const std::string& path, const SessionSpec& spec, const Sc
     lamps.push_back({{"name", scene.lamps[i].name}, {"room", scene.room_names[scene.lamps[i].room]},
                      {"on", static_cast<bool>(lighting.lamp_on[i])}, {"intensity_cd", scene.lamps[i].intensity_cd}});
   }
-  const nlohmann::json json = {
+  nlohmann::json json = {
       {"name", spec.name},
       {"clock_time", spec.clock_time},
       {"role", spec.role},
       {"seed", seed},
       {"frames", summary.frames},
       {"distance_m", summary.distance_m},
+      {"largest_step_m", summary.largest_step_m},
       {"sun_elevation_deg", lighting.sun.elevation_deg},
       {"sun_azimuth_deg", lighting.sun.azimuth_deg},
       {"sun_visible", lighting.sun_normal_lux_bgr[1] > 0.0f},
       {"sky_nits_green", lighting.sky_nits_bgr[1]},
       {"lamps", lamps},
       {"body_from_camera", "identity"}};
+  // A session on a later day records its day and date; a day-0 session's
+  // file stays as datasets of one day have always written it.
+  if (spec.day != 0) {
+    json["day"] = spec.day;
+    json["day_of_year"] = lighting.day_of_year;
+  }
   std::ofstream out(path);
   SLAM_THROW_IF_NOT(InputError, out.good()) << path << ": cannot write";
   out << json.dump(2) << "\n";
@@ -88,6 +95,7 @@ GeneratedSessionSummary GenerateSession(const GeneratorConfig& config, const Sce
   }
   writer.Finish();
   summary.frames = static_cast<int>(route.size());
+  summary.largest_step_m = LargestStepM(route);
   summary.mean_brightness /= std::max(1, summary.frames);
   summary.mean_gain /= std::max(1, summary.frames);
   const Rigid3d world_from_odom = world_from_camera.front();
@@ -128,13 +136,13 @@ std::unique_ptr<SessionSimulator> StartSessionSimulator(const GeneratorConfig& c
   const SessionSpec& spec = config.sessions[index];
   auto simulator = std::make_unique<SessionSimulator>(config, scene,
                                                       ParseClockTime(spec.clock_time, "sessions." + spec.name),
-                                                      DeriveSeed(GeneratorSessionSeed(config, index), 12));
+                                                      DeriveSeed(GeneratorSessionSeed(config, index), 12), spec.day);
   simulator->Settle(first_world_from_camera, 12);
   return simulator;
 }
 
 double SessionStartTimestamp(const SessionSpec& session) {
-  return ParseClockTime(session.clock_time, "sessions." + session.name) * 3600.0;
+  return session.day * 86400.0 + ParseClockTime(session.clock_time, "sessions." + session.name) * 3600.0;
 }
 
 GenerateSummary GenerateDataset(const GeneratorConfig& config, const GenerateOptions& options) {
@@ -168,7 +176,10 @@ GenerateSummary GenerateDataset(const GeneratorConfig& config, const GenerateOpt
   if (error) std::rethrow_exception(error);
 
   DatasetManifest manifest;
-  for (const SessionSpec& s : config.sessions) manifest.sessions.push_back({s.name, s.name, s.clock_time, s.role});
+  for (size_t i = 0; i < config.sessions.size(); ++i) {
+    const SessionSpec& s = config.sessions[i];
+    manifest.sessions.push_back({s.name, s.name, s.clock_time, s.role, summary.sessions[i].largest_step_m});
+  }
   std::set<std::string> credited;
   for (const SceneMesh& mesh : scene.meshes) {
     const std::string source = mesh.catalog + "#" + mesh.model_id;

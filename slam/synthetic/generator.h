@@ -30,6 +30,7 @@ struct GeneratedSessionSummary {
   std::string clock_time;
   int frames = 0;
   double distance_m = 0.0;          // ground-truth path length
+  double largest_step_m = 0.0;      // largest camera move between consecutive frames
   double sun_elevation_deg = 0.0;
   double mean_brightness = 0.0;     // mean output brightness over frames, [0, 1]
   double mean_gain = 0.0;           // mean analogue gain over frames
@@ -59,7 +60,8 @@ std::vector<TimedPose> GeneratorSessionRoute(const GeneratorConfig& config, size
 std::unique_ptr<SessionSimulator> StartSessionSimulator(const GeneratorConfig& config, const Scene& scene,
                                                         size_t index, const Rigid3d& first_world_from_camera);
 
-// Seconds of the local day at which a session's first frame is recorded.
+// Seconds at which a session's first frame is recorded: its day x 86400 plus
+// the seconds of its local clock time (day 0: the seconds of the local day).
 double SessionStartTimestamp(const SessionSpec& session);
 
 }  // namespace duskmap

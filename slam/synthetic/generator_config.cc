@@ -43,7 +43,7 @@ void GeneratorConfig::Check() const {
 }
 
 void ApplyGeneratorModel(const std::string& name, GeneratorConfig* config, const std::string& where) {
-  ApplyModelValues(name, {config->scene, config->lighting, config->camera}, where);
+  ApplyModelValues(name, {config->scene, config->lighting, config->camera, config->route}, where);
   config->model = name;
 }
 

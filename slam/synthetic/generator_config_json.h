@@ -206,6 +206,8 @@ struct JsonCodec<RouteOptions> {
     f("sway_deg", o.sway_deg);
     f("bob_m", o.bob_m);
     f("pitch_deg", o.pitch_deg);
+    f("max_step_m", o.max_step_m);
+    f("paced_walk", o.paced_walk);
   }
 };
 

@@ -12,7 +12,9 @@
 //   run14-2026-12-06   + the windows' view obstructed (facades, ground)
 //   run17-2026-12-06   + glass transmission 0.35 (the last light-map sun)
 //   run22-2026-12-06   + the sun per texel, noise reduction, local contrast
-//   run23-2026-12-06   + the sun per pixel on the furniture (the default)
+//   run23-2026-12-06   + the sun per pixel on the furniture
+//   run24-2026-12-07   + the walker's pace: no step over 55 cm between 1 Hz
+//                      frames, 0.38 m/s along the walked path (the default)
 #pragma once
 
 #include <string>
@@ -22,10 +24,11 @@
 #include "slam/synthetic/scene/apartment.h"
 #include "slam/synthetic/scene/furniture_layout.h"
 #include "slam/synthetic/sensor/camera_model.h"
+#include "slam/synthetic/sensor/route.h"
 
 namespace duskmap {
 
-inline constexpr const char* kDefaultGeneratorModel = "run23-2026-12-06";
+inline constexpr const char* kDefaultGeneratorModel = "run24-2026-12-07";
 
 // Every model's name, oldest first.
 std::vector<std::string> GeneratorModelNames();
@@ -40,6 +43,7 @@ struct GeneratorModelParts {
   ApartmentOptions& scene;
   LightingOptions& lighting;
   CameraModelOptions& camera;
+  RouteOptions& route;
 };
 
 // Sets every value a model decides to that model's (the rest of the parts

@@ -165,6 +165,11 @@ TrainingScene MakeTrainingScene(const TrainingScenesOptions& options, int index)
   TrainingScene scene;
   scene.index = index;
   GeneratorConfig& config = scene.config;
+  // The model the committed DuskNet was trained on (run 23's walk: the
+  // training data stays reproducible); its frames sample the whole patrol
+  // sparsely (metres apart), so the 1 Hz step cap does not apply.
+  ApplyGeneratorModel("run23-2026-12-06", &config);
+  config.route.max_step_m = 1000.0;
   config.seed = GeneratorSeed(scene_seed);
   config.scene.seed = DeriveSeed(config.seed, 1);  // what GenerateDataset gives the textures
   config.scene.wall_paint_seed = DeriveSeed(scene_seed, kPaint) | 1;

@@ -109,6 +109,21 @@ TEST(ReadGeneratorConfig, InconsistentValuesAreRejected) {
   EXPECT_NE(ErrorOf(WriteConfig("depth", R"({"depth": {"max_range_m": 0.1}})")).find("depth.min_range_m"), std::string::npos);
 }
 
+// The paper's 55 cm between consecutive 1 Hz frames: a pace that could
+// break it is refused at load, naming the key, before anything is rendered.
+TEST(ReadGeneratorConfig, APaceThatCouldStepOverTheCapIsRefusedNamingTheKey) {
+  const std::string fast = WriteConfig("fast", R"({"route": {"speed_mps": 0.55}})");
+  const std::string error = ErrorOf(fast);
+  EXPECT_NE(error.find("route.speed_mps 0.55"), std::string::npos) << error;
+  EXPECT_NE(error.find("more than route.max_step_m 0.55"), std::string::npos) << error;
+  EXPECT_EQ(error.find('\n'), std::string::npos);
+  EXPECT_NE(ErrorOf(WriteConfig("slow_frames", R"({"route": {"frame_rate_hz": 0.5}})")).find("route.speed_mps"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf(WriteConfig("cap", R"({"route": {"max_step_m": 0}})")).find("route.max_step_m"), std::string::npos);
+  // A faster walk is a choice the config makes with its cap.
+  EXPECT_NO_THROW(ReadGeneratorConfig(WriteConfig("fast_cap", R"({"route": {"speed_mps": 0.55, "max_step_m": 0.7}})")));
+}
+
 // Every generator config shipped under configs/ (the quick profile's
 // overrides are one on their own) loads.
 TEST(ReadGeneratorConfig, EveryShippedGeneratorConfigLoads) {
@@ -163,6 +178,8 @@ TEST(ReadGeneratorConfig, AConfigWithOnlyMaxFramesIsTheCalibratedDefault) {
   EXPECT_EQ(only.lighting.glass_transmission, 0.35);
   EXPECT_EQ(only.lighting.horizon_elevation_deg, 14.0);
   EXPECT_EQ(only.camera.image_processor.tone_contrast, 0.5);
+  EXPECT_TRUE(only.route.paced_walk);
+  EXPECT_EQ(only.route.max_step_m, 0.55);
   EXPECT_NE(ToJsonObject(only.lighting), ToJsonObject(LightingOptions()));
 }
 
@@ -171,7 +188,7 @@ TEST(ReadGeneratorConfig, AConfigWithOnlyMaxFramesIsTheCalibratedDefault) {
 // config's other keys over its own.
 TEST(GeneratorModels, EachModelIsSelectableAndSetsEveryValueItDecides) {
   const std::vector<std::string> names = GeneratorModelNames();
-  ASSERT_EQ(names.size(), 6u);
+  ASSERT_EQ(names.size(), 7u);
   EXPECT_EQ(names.front(), "boxes-2026-12-02");
   EXPECT_EQ(names.back(), kDefaultGeneratorModel);
   for (const std::string& name : names) {
@@ -201,6 +218,10 @@ TEST(GeneratorModels, EachModelIsSelectableAndSetsEveryValueItDecides) {
   EXPECT_TRUE(model("run22-2026-12-06").lighting.sun_per_texel);
   EXPECT_FALSE(model("run22-2026-12-06").lighting.mesh_sun_per_sample);
   EXPECT_TRUE(model("run23-2026-12-06").lighting.mesh_sun_per_sample);
+  EXPECT_FALSE(model("run23-2026-12-06").route.paced_walk);
+  EXPECT_EQ(model("run23-2026-12-06").route.speed_mps, 0.55);
+  EXPECT_TRUE(model("run24-2026-12-07").route.paced_walk);
+  EXPECT_EQ(model("run24-2026-12-07").route.max_step_m, 0.55);
   const GeneratorConfig over = ReadGeneratorConfig(
       WriteConfig("over", R"({"model": "boxes-2026-12-02", "lighting": {"glass_transmission": 0.5}})"));
   EXPECT_TRUE(over.scene.box_furniture);

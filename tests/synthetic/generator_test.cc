@@ -77,6 +77,17 @@ TEST(GenerateDataset, WritesAReadableTumLayoutWithGroundTruth) {
   }
   EXPECT_EQ(frames, 4);
   EXPECT_TRUE(fs::exists(options.output_path + "/1/calibration.json"));
+  // The manifest records each session's largest step, as the route has it.
+  const DatasetManifest manifest = ReadManifest(options.output_path);
+  ASSERT_EQ(manifest.sessions.size(), 2u);
+  for (size_t i = 0; i < manifest.sessions.size(); ++i) {
+    const double largest_m = LargestStepM(GeneratorSessionRoute(testing::SmallConfig(4), i));
+    EXPECT_GT(largest_m, 0.0);
+    ASSERT_TRUE(manifest.sessions[i].largest_step_m.has_value());
+    EXPECT_DOUBLE_EQ(*manifest.sessions[i].largest_step_m, largest_m);
+    EXPECT_LE(largest_m, testing::SmallConfig().route.max_step_m);
+    EXPECT_DOUBLE_EQ(summary.sessions[i].largest_step_m, largest_m);
+  }
 }
 
 TEST(GenerateDataset, NightIsDarkerAndNoisierThanDay) {

@@ -122,8 +122,8 @@ nlohmann::json ReadJson(const std::string& path) {
   return nlohmann::json::parse(in);
 }
 
-// End to end: two sessions at 18:56, days 0 and 7: their session.json has
-// the day and its date, the later sun higher; frames are a week apart.
+// End to end: two sessions at 18:56, days 0 and 7: the later one's
+// session.json has the day and its date, the later sun higher; frames are a week apart.
 TEST(SessionDays, GeneratedSessionsOfTwoDaysHaveTheirDatesSunsAndTimestamps) {
   GeneratorConfig config = testing::SmallConfig(2);
   config.sessions = {{"a5", "18:56", "mapping"}, {"h5", "18:56", "mapping", 7}};
@@ -132,8 +132,8 @@ TEST(SessionDays, GeneratedSessionsOfTwoDaysHaveTheirDatesSunsAndTimestamps) {
   GenerateDataset(config, options);
   const nlohmann::json a5 = ReadJson(options.output_path + "/a5/session.json");
   const nlohmann::json h5 = ReadJson(options.output_path + "/h5/session.json");
-  EXPECT_EQ(a5.at("day"), 0);
-  EXPECT_EQ(a5.at("day_of_year"), 87);
+  EXPECT_FALSE(a5.contains("day"));  // a day-0 session's file is as one-day datasets write it
+  EXPECT_FALSE(a5.contains("day_of_year"));
   EXPECT_EQ(h5.at("day"), 7);
   EXPECT_EQ(h5.at("day_of_year"), 94);
   EXPECT_GT(h5.at("sun_elevation_deg").get<double>(), a5.at("sun_elevation_deg").get<double>() + 1.0);
