@@ -115,7 +115,10 @@ def consecutive_matrix(rows, out_dir):
     for feature in ordered(r["feature"] for r in rows):
         mine = [r for r in rows if r["feature"] == feature]
         maps = ordered(r["map_session"] for r in mine)
-        later = ordered(r["localization_session"] for r in mine)
+        # The later sessions in the sessions' own order (the map sessions' first), not in
+        # the order the pairs list them (1-2, 1-3, 1-6, 2-4, ... would put 6 before 4).
+        sessions = ordered([r["map_session"] for r in mine] + [r["localization_session"] for r in mine])
+        later = [s for s in sessions if s in {r["localization_session"] for r in mine}]
         value = {(r["map_session"], r["localization_session"]): float(r["within_55cm_pct"])
                  for r in mine}
         matrix = [[value.get((m, s), float("nan")) for s in later] for m in maps]
