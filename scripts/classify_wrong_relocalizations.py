@@ -41,8 +41,10 @@ Each wrong re-localization gets ONE primary cause: the first rule that holds, in
                         than MIN_VALID_FRACTION of the pixels with depth, or more than
                         GRAZING_FRACTION of the valid pixels seen at more than GRAZING_DEG between
                         the viewing ray and the surface normal.
-  8. fast_turn          the query camera turns faster than FAST_TURN_DEG_S (ground truth, to the
-                        previous or the next frame): the renderer smears the image by the image
+  8. fast_turn          the query camera or the matched map frame's camera turns faster than
+                        FAST_TURN_DEG_S (ground truth, to the previous or the next frame of its
+                        session; a smeared map frame places its 3D points as wrongly as a
+                        smeared query its 2D points): the renderer smears the image by the image
                         motion during the exposure (about 9 px at 30 deg/s and 1/30 s).
   9. unexplained        none of the above: near node, enough inliers, similar viewing direction,
                         close and frontal depth, slow camera.
@@ -105,7 +107,7 @@ CSV_COLUMNS = [
     "band", "matched_by", "inliers", "matched_node", "matched_session", "matched_frame",
     "matched_timestamp_s", "true_distance_m", "true_angle_deg", "node_map_error_m",
     "hypothesis_run", "moved_away_m", "depth_median_m", "depth_valid_fraction",
-    "depth_grazing_fraction", "query_turn_deg_s", "pivot_ratio", "cause",
+    "depth_grazing_fraction", "query_turn_deg_s", "map_turn_deg_s", "pivot_ratio", "cause",
 ]
 
 
@@ -334,7 +336,7 @@ def classify(row, min_inliers):
     median, valid, grazing = row["depth"]
     if (not median <= FAR_DEPTH_M) or valid < MIN_VALID_FRACTION or grazing > GRAZING_FRACTION:
         return "far_or_grazing"
-    if row["query_turn_deg_s"] > FAST_TURN_DEG_S:
+    if max(row["query_turn_deg_s"], row["map_turn_deg_s"]) > FAST_TURN_DEG_S:
         return "fast_turn"
     return "unexplained"
 
@@ -443,6 +445,7 @@ def describe(frames, i, feature, label, query, job, dataset, min_inliers, path):
         "cache_validation": f.get("cache_validation"),
         "depth": dataset.depth_stats(query, qt),
         "query_turn_deg_s": turn_rate(dataset.session(query), dataset.session(query).timestamps.index(round(qt, 6))),
+        "map_turn_deg_s": turn_rate(dataset.session(ms), dataset.session(ms).timestamps.index(round(mt, 6))),
     }
     row["pivot_ratio"] = pivot_ratio(row["error_m"], row["error_deg"], row["depth"][0])
     row["cause"] = classify(row, min_inliers)
@@ -541,6 +544,9 @@ def write_markdown(rows, results, min_inliers, path, examples, other, base):
             n = sum(1 for r in rows if pred(r))
             lines.append("| %s | %.1f %% | %.1f %% |" % (text, 100.0 * n / max(1, len(rows)),
                                                        100.0 * base[key] / base["relocalized"]))
+        either = sum(1 for r in rows if max(r["query_turn_deg_s"], r["map_turn_deg_s"]) > FAST_TURN_DEG_S)
+        lines.append("| query or matched map frame turning faster than %.0f°/s | %.1f %% | |"
+                     % (FAST_TURN_DEG_S, 100.0 * either / max(1, len(rows))))
         lines.append("")
     reported = report_wrong_count(results)
     ours = sum(1 for r in rows if r["feature"] in paper)
