@@ -132,9 +132,9 @@ class Walk {
 };
 
 // Nominal time -> walked time. The walker keeps its session speed along the
-// path it actually walks, wander included, so the wander lengthens the walk
-// instead of speeding it up, and no step between frames is longer than the
-// session speed times the frame period. Returns samples (tau, t), increasing.
+// path it actually walks, wander included, so the wander changes how long
+// the walk takes, not how fast it goes, and no step between frames is longer
+// than the session speed times the frame period. Returns samples (tau, t), increasing.
 std::vector<std::pair<double, double>> WalkedTime(const Walk& walk) {
   constexpr double kStepS = 0.01;
   const double end = walk.nominal_duration_s();
