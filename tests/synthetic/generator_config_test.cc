@@ -10,25 +10,14 @@
 #include "slam/core/check.h"
 #include "slam/core/json_fields.h"
 #include "slam/synthetic/generator_config_json.h"
+#include "tests/synthetic/generator_config_files.h"
 #include "tests/testing/temp_dir.h"
 
 namespace duskmap {
 namespace {
 
-std::string WriteConfig(const std::string& name, const std::string& text) {
-  const std::string path = testing::ProcessTempPath("cfg_" + name + ".json");
-  std::ofstream(path) << text;
-  return path;
-}
-
-std::string ErrorOf(const std::string& path) {
-  try {
-    ReadGeneratorConfig(path);
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::GeneratorConfigError;
+using testing::WriteGeneratorConfig;
 
 TEST(ReadGeneratorConfig, DefaultConfigFileIsValidAndMatchesThePaper) {
   const GeneratorConfig config = ReadGeneratorConfig(std::string(DUSKMAP_SOURCE_DIR) + "/configs/sunset_apartment.json");
@@ -51,7 +40,7 @@ TEST(ReadGeneratorConfig, DefaultConfigFileIsValidAndMatchesThePaper) {
 
 TEST(ReadGeneratorConfig, ReadsTheOptionalCeilingLights) {
   const GeneratorConfig config = ReadGeneratorConfig(
-      WriteConfig("ceiling", R"({"scene": {"lamps": {"bedroom_ceiling_cd": 70, "living_ceiling_cd": 80}}})"));
+      WriteGeneratorConfig("ceiling", R"({"scene": {"lamps": {"bedroom_ceiling_cd": 70, "living_ceiling_cd": 80}}})"));
   EXPECT_EQ(config.scene.lamps.bedroom_ceiling_cd, 70.0);
   EXPECT_EQ(config.scene.lamps.living_ceiling_cd, 80.0);
 }
@@ -59,7 +48,7 @@ TEST(ReadGeneratorConfig, ReadsTheOptionalCeilingLights) {
 // The optional mirrors reach the scene's quads: window glass and the bare
 // floors (not the rugs); out-of-range values are refused naming the key.
 TEST(ReadGeneratorConfig, ReadsTheOptionalMirrorReflectances) {
-  const GeneratorConfig config = ReadGeneratorConfig(WriteConfig(
+  const GeneratorConfig config = ReadGeneratorConfig(WriteGeneratorConfig(
       "mirrors", R"({"scene": {"window_reflectance": 0.08, "floor_reflectance": 0.04}})"));
   EXPECT_EQ(config.scene.window_reflectance, 0.08);
   EXPECT_EQ(config.scene.floor_reflectance, 0.04);
@@ -84,44 +73,44 @@ TEST(ReadGeneratorConfig, ReadsTheOptionalMirrorReflectances) {
     EXPECT_EQ(q.mirror_reflectance, 0.0);  // off by default
   }
   const std::string error =
-      ErrorOf(WriteConfig("bad_mirror", R"({"scene": {"floor_reflectance": 0.9}})"));
+      GeneratorConfigError(WriteGeneratorConfig("bad_mirror", R"({"scene": {"floor_reflectance": 0.9}})"));
   EXPECT_NE(error.find("scene.floor_reflectance"), std::string::npos) << error;
 }
 
 TEST(ReadGeneratorConfig, UnknownKeyIsNamed) {
-  const std::string error = ErrorOf(WriteConfig("unknown", R"({"camera": {"widht": 320}})"));
+  const std::string error = GeneratorConfigError(WriteGeneratorConfig("unknown", R"({"camera": {"widht": 320}})"));
   EXPECT_NE(error.find("widht"), std::string::npos) << error;
   EXPECT_NE(error.find("camera"), std::string::npos) << error;
 }
 
 TEST(ReadGeneratorConfig, MalformedJsonNamesTheFile) {
-  const std::string path = WriteConfig("malformed", R"({"seed": 3,)");
-  const std::string error = ErrorOf(path);
+  const std::string path = WriteGeneratorConfig("malformed", R"({"seed": 3,)");
+  const std::string error = GeneratorConfigError(path);
   EXPECT_NE(error.find(path), std::string::npos) << error;
   EXPECT_EQ(error.find('\n'), std::string::npos);
 }
 
 TEST(ReadGeneratorConfig, InconsistentValuesAreRejected) {
-  EXPECT_NE(ErrorOf(WriteConfig("type", R"({"camera": {"width": "wide"}})")).find("width"), std::string::npos);
-  EXPECT_NE(ErrorOf(WriteConfig("range", R"({"route": {"lateral_max_m": 2.0}})")).find("route.lateral_max_m"), std::string::npos);
-  EXPECT_NE(ErrorOf(WriteConfig("dup", R"({"sessions": [{"name": "1", "clock_time": "16:46"}, {"name": "1", "clock_time": "17:00"}]})")).find("duplicate"), std::string::npos);
-  EXPECT_NE(ErrorOf(WriteConfig("time", R"({"sessions": [{"name": "1", "clock_time": "4pm"}]})")).find("4pm"), std::string::npos);
-  EXPECT_NE(ErrorOf(WriteConfig("depth", R"({"depth": {"max_range_m": 0.1}})")).find("depth.min_range_m"), std::string::npos);
+  EXPECT_NE(GeneratorConfigError(WriteGeneratorConfig("type", R"({"camera": {"width": "wide"}})")).find("width"), std::string::npos);
+  EXPECT_NE(GeneratorConfigError(WriteGeneratorConfig("range", R"({"route": {"lateral_max_m": 2.0}})")).find("route.lateral_max_m"), std::string::npos);
+  EXPECT_NE(GeneratorConfigError(WriteGeneratorConfig("dup", R"({"sessions": [{"name": "1", "clock_time": "16:46"}, {"name": "1", "clock_time": "17:00"}]})")).find("duplicate"), std::string::npos);
+  EXPECT_NE(GeneratorConfigError(WriteGeneratorConfig("time", R"({"sessions": [{"name": "1", "clock_time": "4pm"}]})")).find("4pm"), std::string::npos);
+  EXPECT_NE(GeneratorConfigError(WriteGeneratorConfig("depth", R"({"depth": {"max_range_m": 0.1}})")).find("depth.min_range_m"), std::string::npos);
 }
 
 // The paper's 55 cm between consecutive 1 Hz frames: a pace that could
 // break it is refused at load, naming the key, before anything is rendered.
 TEST(ReadGeneratorConfig, APaceThatCouldStepOverTheCapIsRefusedNamingTheKey) {
-  const std::string fast = WriteConfig("fast", R"({"route": {"speed_mps": 0.55}})");
-  const std::string error = ErrorOf(fast);
+  const std::string fast = WriteGeneratorConfig("fast", R"({"route": {"speed_mps": 0.55}})");
+  const std::string error = GeneratorConfigError(fast);
   EXPECT_NE(error.find("route.speed_mps 0.55"), std::string::npos) << error;
   EXPECT_NE(error.find("more than route.max_step_m 0.55"), std::string::npos) << error;
   EXPECT_EQ(error.find('\n'), std::string::npos);
-  EXPECT_NE(ErrorOf(WriteConfig("slow_frames", R"({"route": {"frame_rate_hz": 0.5}})")).find("route.speed_mps"),
+  EXPECT_NE(GeneratorConfigError(WriteGeneratorConfig("slow_frames", R"({"route": {"frame_rate_hz": 0.5}})")).find("route.speed_mps"),
             std::string::npos);
-  EXPECT_NE(ErrorOf(WriteConfig("cap", R"({"route": {"max_step_m": 0}})")).find("route.max_step_m"), std::string::npos);
+  EXPECT_NE(GeneratorConfigError(WriteGeneratorConfig("cap", R"({"route": {"max_step_m": 0}})")).find("route.max_step_m"), std::string::npos);
   // A faster walk is a choice the config makes with its cap.
-  EXPECT_NO_THROW(ReadGeneratorConfig(WriteConfig("fast_cap", R"({"route": {"speed_mps": 0.55, "max_step_m": 0.7}})")));
+  EXPECT_NO_THROW(ReadGeneratorConfig(WriteGeneratorConfig("fast_cap", R"({"route": {"speed_mps": 0.55, "max_step_m": 0.7}})")));
 }
 
 // Every generator config shipped under configs/ (the quick profile's
@@ -147,24 +136,24 @@ TEST(ReadGeneratorConfig, EveryShippedGeneratorConfigLoads) {
 }
 
 TEST(ReadGeneratorConfig, ErrorsNameTheListItemAndTheDerivedSeed) {
-  const std::string missing = WriteConfig(
+  const std::string missing = WriteGeneratorConfig(
       "session_time", R"({"sessions": [{"name": "1", "clock_time": "16:46"}, {"name": "2"}]})");
-  EXPECT_EQ(ErrorOf(missing), missing + ".sessions[1]: missing key 'clock_time'");
+  EXPECT_EQ(GeneratorConfigError(missing), missing + ".sessions[1]: missing key 'clock_time'");
   const std::string unknown =
-      WriteConfig("session_key", R"({"sessions": [{"name": "1", "clock_time": "16:46", "rol": "mapping"}]})");
-  EXPECT_EQ(ErrorOf(unknown), unknown + ".sessions[0]: unknown key 'rol'");
-  const std::string seed = WriteConfig("scene_seed", R"({"scene": {"seed": 3}})");
-  EXPECT_EQ(ErrorOf(seed), seed + ".scene.seed: not set here; seed sets it");
-  const std::string position = WriteConfig(
+      WriteGeneratorConfig("session_key", R"({"sessions": [{"name": "1", "clock_time": "16:46", "rol": "mapping"}]})");
+  EXPECT_EQ(GeneratorConfigError(unknown), unknown + ".sessions[0]: unknown key 'rol'");
+  const std::string seed = WriteGeneratorConfig("scene_seed", R"({"scene": {"seed": 3}})");
+  EXPECT_EQ(GeneratorConfigError(seed), seed + ".scene.seed: not set here; seed sets it");
+  const std::string position = WriteGeneratorConfig(
       "position", R"({"scene": {"furniture": {"pieces": [{"model": "m", "room": "kitchen", "position_m": [1]}]}}})");
-  EXPECT_EQ(ErrorOf(position), position + ".scene.furniture.pieces[0].position_m: expected 2 numbers, got 1");
+  EXPECT_EQ(GeneratorConfigError(position), position + ".scene.furniture.pieces[0].position_m: expected 2 numbers, got 1");
 }
 
 // The code's defaults are the default dataset: a config that sets nothing
 // but max_frames reads as configs/sunset_apartment.json with that max_frames,
 // and as GeneratorConfig's defaults.
 TEST(ReadGeneratorConfig, AConfigWithOnlyMaxFramesIsTheCalibratedDefault) {
-  const GeneratorConfig only = ReadGeneratorConfig(WriteConfig("only_frames", R"({"max_frames": 3})"));
+  const GeneratorConfig only = ReadGeneratorConfig(WriteGeneratorConfig("only_frames", R"({"max_frames": 3})"));
   GeneratorConfig shipped = ReadGeneratorConfig(std::string(DUSKMAP_SOURCE_DIR) + "/configs/sunset_apartment.json");
   shipped.max_frames = 3;
   GeneratorConfig code;
@@ -192,7 +181,7 @@ TEST(GeneratorModels, EachModelIsSelectableAndSetsEveryValueItDecides) {
   EXPECT_EQ(names.front(), "boxes-2026-12-02");
   EXPECT_EQ(names.back(), kDefaultGeneratorModel);
   for (const std::string& name : names) {
-    const GeneratorConfig read = ReadGeneratorConfig(WriteConfig("model", R"({"model": ")" + name + R"("})"));
+    const GeneratorConfig read = ReadGeneratorConfig(WriteGeneratorConfig("model", R"({"model": ")" + name + R"("})"));
     EXPECT_EQ(read.model, name);
     for (const std::string& before : names) {
       GeneratorConfig config;
@@ -223,16 +212,16 @@ TEST(GeneratorModels, EachModelIsSelectableAndSetsEveryValueItDecides) {
   EXPECT_TRUE(model("run24-2026-12-07").route.paced_walk);
   EXPECT_EQ(model("run24-2026-12-07").route.max_step_m, 0.55);
   const GeneratorConfig over = ReadGeneratorConfig(
-      WriteConfig("over", R"({"model": "boxes-2026-12-02", "lighting": {"glass_transmission": 0.5}})"));
+      WriteGeneratorConfig("over", R"({"model": "boxes-2026-12-02", "lighting": {"glass_transmission": 0.5}})"));
   EXPECT_TRUE(over.scene.box_furniture);
   EXPECT_EQ(over.lighting.glass_transmission, 0.5);
 }
 
 TEST(ReadGeneratorConfig, AnUnknownModelIsRefusedNamingTheKey) {
-  const std::string path = WriteConfig("bad_model", R"({"model": "run99"})");
-  const std::string error = ErrorOf(path);
+  const std::string path = WriteGeneratorConfig("bad_model", R"({"model": "run99"})");
+  const std::string error = GeneratorConfigError(path);
   EXPECT_EQ(error.find(path + ".model: unknown model 'run99' (known: boxes-2026-12-02, "), 0u) << error;
-  EXPECT_NE(ErrorOf(WriteConfig("model_type", R"({"model": 23})")).find(".model: wrong type"), std::string::npos);
+  EXPECT_NE(GeneratorConfigError(WriteGeneratorConfig("model_type", R"({"model": 23})")).find(".model: wrong type"), std::string::npos);
   GeneratorConfig config;
   config.model = "run99";
   EXPECT_THROW(config.Check(), ConfigError);
@@ -241,7 +230,7 @@ TEST(ReadGeneratorConfig, AnUnknownModelIsRefusedNamingTheKey) {
 // The camera's options nest by stage; each flat key of before is refused
 // with the key that replaced it.
 TEST(ReadGeneratorConfig, TheCameraNestsByStageAndAMovedKeyIsRefusedWithItsNewKey) {
-  const GeneratorConfig nested = ReadGeneratorConfig(WriteConfig("nested", R"({"camera": {
+  const GeneratorConfig nested = ReadGeneratorConfig(WriteGeneratorConfig("nested", R"({"camera": {
       "exposure": {"target": 0.3, "motion_blur_scale": 0.5}, "white_balance": {"strength": 0.5},
       "noise": {"read_noise": 0.004}, "image_processor": {"tone_contrast": 0.2, "sharpen_amount": 1}}})"));
   EXPECT_EQ(nested.camera.exposure.target, 0.3);
@@ -254,18 +243,18 @@ TEST(ReadGeneratorConfig, TheCameraNestsByStageAndAMovedKeyIsRefusedWithItsNewKe
   EXPECT_EQ(moved.size(), 24u);
   for (const auto& [old_key, new_key] : moved) {
     const size_t dot = old_key.find('.');
-    const std::string path = WriteConfig(
+    const std::string path = WriteGeneratorConfig(
         "moved", "{\"" + old_key.substr(0, dot) + "\": {\"" + old_key.substr(dot + 1) + "\": 1}}");
-    EXPECT_EQ(ErrorOf(path), path + "." + old_key + ": moved to " + new_key);
+    EXPECT_EQ(GeneratorConfigError(path), path + "." + old_key + ": moved to " + new_key);
   }
-  const std::string range = ErrorOf(WriteConfig("range", R"({"camera": {"exposure": {"speed": 2}}})"));
+  const std::string range = GeneratorConfigError(WriteGeneratorConfig("range", R"({"camera": {"exposure": {"speed": 2}}})"));
   EXPECT_NE(range.find("camera.exposure.speed must be in (0, 1]"), std::string::npos) << range;
 }
 
 // Every lamp knob is read from scene.lamps; the scene carries the lamps'
 // colour and shade glow to the lighting.
 TEST(ReadGeneratorConfig, TheLampKnobsLiveInSceneLamps) {
-  const GeneratorConfig config = ReadGeneratorConfig(WriteConfig("lamps", R"({"model": "boxes-2026-12-02",
+  const GeneratorConfig config = ReadGeneratorConfig(WriteGeneratorConfig("lamps", R"({"model": "boxes-2026-12-02",
       "scene": {"lamps": {"intensity_scale": 2, "living_lamp_on_from": "18:00", "color_temperature_k": 4000,
                           "shade_nits_per_cd": 10}}})"));
   const LampOptions& lamps = config.scene.lamps;
@@ -279,12 +268,12 @@ TEST(ReadGeneratorConfig, TheLampKnobsLiveInSceneLamps) {
   const SessionLighting lighting = ComputeSessionLighting(config.lighting, scene, 20.0);
   EXPECT_EQ(lighting.lamp_color_bgr, ColorTemperatureToBgr(4000.0));
   const std::string error =
-      ErrorOf(WriteConfig("lamp_range", R"({"scene": {"lamps": {"color_temperature_k": 100}}})"));
+      GeneratorConfigError(WriteGeneratorConfig("lamp_range", R"({"scene": {"lamps": {"color_temperature_k": 100}}})"));
   EXPECT_NE(error.find("scene.lamps.color_temperature_k must be in [1000, 12000]"), std::string::npos) << error;
 }
 
 TEST(ReadGeneratorConfig, MissingFileNamesIt) {
-  EXPECT_NE(ErrorOf("/nonexistent/duskmap.json").find("/nonexistent/duskmap.json"), std::string::npos);
+  EXPECT_NE(GeneratorConfigError("/nonexistent/duskmap.json").find("/nonexistent/duskmap.json"), std::string::npos);
 }
 
 }  // namespace

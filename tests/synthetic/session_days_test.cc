@@ -17,48 +17,37 @@
 #include "slam/synthetic/generator_config_json.h"
 #include "slam/synthetic/session_simulator.h"
 #include "tests/synthetic/small_config.h"
+#include "tests/synthetic/generator_config_files.h"
 #include "tests/testing/temp_dir.h"
 
 namespace duskmap {
 namespace {
 namespace fs = std::filesystem;
 
-std::string WriteConfig(const std::string& name, const std::string& text) {
-  const std::string path = testing::ProcessTempPath("days_" + name + ".json");
-  std::ofstream(path) << text;
-  return path;
-}
-
-std::string ErrorOf(const std::string& path) {
-  try {
-    ReadGeneratorConfig(path);
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::GeneratorConfigError;
+using testing::WriteGeneratorConfig;
 
 std::string OneSession(const std::string& day) {
   return R"({"sessions": [{"name": "b5", "clock_time": "18:56", "day": )" + day + "}]}";
 }
 
 TEST(SessionDays, TheDayKeyIsReadAndValidatedNamingIt) {
-  EXPECT_EQ(ReadGeneratorConfig(WriteConfig("day3", OneSession("3"))).sessions.at(0).day, 3);
-  EXPECT_EQ(ReadGeneratorConfig(WriteConfig("day365", OneSession("365"))).sessions.at(0).day, 365);
+  EXPECT_EQ(ReadGeneratorConfig(WriteGeneratorConfig("day3", OneSession("3"))).sessions.at(0).day, 3);
+  EXPECT_EQ(ReadGeneratorConfig(WriteGeneratorConfig("day365", OneSession("365"))).sessions.at(0).day, 365);
   for (const std::string& bad : {"-1", "366"}) {
-    const std::string path = WriteConfig("bad" + bad, OneSession(bad));
-    const std::string error = ErrorOf(path);
+    const std::string path = WriteGeneratorConfig("bad" + bad, OneSession(bad));
+    const std::string error = GeneratorConfigError(path);
     EXPECT_NE(error.find("sessions.b5.day must be in [0, 365], got " + bad), std::string::npos) << error;
     EXPECT_EQ(error.find('\n'), std::string::npos) << error;
   }
-  const std::string text = ErrorOf(WriteConfig("text", OneSession("\"monday\"")));
+  const std::string text = GeneratorConfigError(WriteGeneratorConfig("text", OneSession("\"monday\"")));
   EXPECT_NE(text.find("sessions[0].day"), std::string::npos) << text;
 }
 
 // A config that sets no day is the config it was: every session on
 // lighting.day_of_year itself, with the same light and timestamps.
 TEST(SessionDays, ASessionWithoutADayIsOnTheConfigsDate) {
-  const GeneratorConfig only = ReadGeneratorConfig(WriteConfig("none", R"({"max_frames": 3})"));
+  const GeneratorConfig only = ReadGeneratorConfig(WriteGeneratorConfig("none", R"({"max_frames": 3})"));
   for (const SessionSpec& s : only.sessions) EXPECT_EQ(s.day, 0) << s.name;
   for (const SessionSpec& s : GeneratorConfig::DefaultSessions()) EXPECT_EQ(s.day, 0) << s.name;
   EXPECT_EQ(ToJsonObject(LightingOnDay(only.lighting, 0)), ToJsonObject(only.lighting));
