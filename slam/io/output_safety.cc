@@ -108,14 +108,14 @@ OwnedOutput OwnedResultsFolder() {
 
 void CheckPathLabel(const std::string& label, const std::string& where) {
   SLAM_THROW_IF_NOT(ConfigError, !label.empty()) << where << ": empty label";
-  bool clean = label.size() <= 128 && label != "." && label != ".." && label[0] != '.';
+  bool clean = label.size() <= kMaxPathLabelBytes && label != "." && label != ".." && label[0] != '.';
   for (const char c : label) {
     if (c == '/' || c == '\\' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f) clean = false;
   }
   SLAM_THROW_IF_NOT(ConfigError, clean)
       << where << ": '" << label
       << "' cannot name a results folder (no '/', '\\', control characters or leading '.', "
-         "at most 128 bytes)";
+         "at most " << kMaxPathLabelBytes << " bytes)";
 }
 
 FolderLock::FolderLock(const fs::path& folder) {

@@ -14,6 +14,7 @@
 //   is still free (io/publish.h), so nothing that appears meanwhile is lost.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <functional>
 #include <ostream>
@@ -48,9 +49,15 @@ bool IsDuskmapResultsFolder(const std::filesystem::path& path);
 OwnedOutput OwnedDataset();
 OwnedOutput OwnedResultsFolder();
 
+// The longest label CheckPathLabel accepts: a file name's 255 bytes (NAME_MAX)
+// less the ".partial" a job's folder carries while it is written
+// (slam/experiment/job_runner.cc). A 48-session map label such as
+// "a1+a2+...+h6" takes 143 bytes.
+inline constexpr std::size_t kMaxPathLabelBytes = 255 - 8;
+
 // Throws ConfigError("<where>: <label> ...") unless `label` can be used as a
-// single path component: non-empty, at most 128 bytes, no '/', '\\' or
-// control characters, not "." or "..", not starting with '.'.
+// single path component: non-empty, at most kMaxPathLabelBytes, no '/', '\\'
+// or control characters, not "." or "..", not starting with '.'.
 void CheckPathLabel(const std::string& label, const std::string& where);
 
 // An exclusive advisory lock (flock) on `<folder>/.duskmap.lock`, held until

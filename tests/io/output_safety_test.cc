@@ -86,12 +86,30 @@ TEST(OutputSafety, ReplaceNeedsOverwriteAndOwnership) {
 TEST(OutputSafety, LabelsStayOneComponent) {
   for (const std::string& bad : std::vector<std::string>{"", ".", "..", "../../escaped", "a/b",
                                                          ".hidden", "a\\b", "a\nb",
-                                                         std::string(129, 'x')}) {
+                                                         std::string(kMaxPathLabelBytes + 1, 'x')}) {
     EXPECT_THROW(CheckPathLabel(bad, "cfg.json: maps"), ConfigError) << bad;
   }
   for (const std::string& good : std::vector<std::string>{"1+6", "1-2-3-4-5-6", "1|2|3", "SI", "map_A.v2"}) {
     EXPECT_NO_THROW(CheckPathLabel(good, "cfg.json: maps")) << good;
   }
+}
+
+// The 48-session map of configs/lifelong_apartment.json (a1+...+h6, 143 bytes)
+// is a valid label, and the longest label still names a folder while its job
+// writes it as "<label>.partial".
+TEST(OutputSafety, LongestLabelNamesAPartialFolder) {
+  std::string merged_48;
+  for (const char day : std::string("abcdefgh")) {
+    for (int clock = 1; clock <= 6; ++clock) {
+      merged_48 += (merged_48.empty() ? "" : "+") + std::string(1, day) + std::to_string(clock);
+    }
+  }
+  ASSERT_EQ(merged_48.size(), 143u);
+  EXPECT_NO_THROW(CheckPathLabel(merged_48, "cfg.json: maps"));
+  const std::string longest(kMaxPathLabelBytes, 'x');
+  EXPECT_NO_THROW(CheckPathLabel(longest, "cfg.json: maps"));
+  const fs::path partial = fs::path(ProcessTempDir("safety_long_label")) / (longest + ".partial");
+  EXPECT_TRUE(fs::create_directories(partial)) << partial;
 }
 
 TEST(OutputSafety, SecondProcessCannotLockTheFolder) {
