@@ -1,5 +1,6 @@
 #include "slam/experiment/experiment_config.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <set>
 
@@ -222,6 +223,26 @@ void CheckConsecutive(const ExperimentOptions& o) {
   }
 }
 
+// The scaling curve: at least two of the config's own maps, each once.
+void CheckScaling(const ExperimentOptions& o) {
+  if (!o.scaling) return;
+  const std::vector<std::string>& curve = o.scaling->maps;
+  SLAM_THROW_IF_NOT(ConfigError, curve.size() >= 2)
+      << "scaling.maps: a curve needs at least 2 maps, got " << curve.size();
+  std::set<std::string> seen;
+  for (const std::string& label : curve) {
+    const auto map = std::find_if(o.maps.begin(), o.maps.end(),
+                                  [&label](const MapSpec& m) { return m.label == label; });
+    SLAM_THROW_IF_NOT(ConfigError, map != o.maps.end())
+        << "scaling.maps: '" << label << "' is not one of the config's maps";
+    SLAM_THROW_IF_NOT(ConfigError, map->BuildsItsOwnMap())
+        << "scaling.maps: '" << label
+        << "' is a closest-in-time map (no map of its own, so no size to plot)";
+    SLAM_THROW_IF_NOT(ConfigError, seen.insert(label).second)
+        << "scaling.maps: '" << label << "' listed twice";
+  }
+}
+
 }  // namespace
 
 void ExperimentOptions::Check() const {
@@ -229,6 +250,7 @@ void ExperimentOptions::Check() const {
   CheckFeatureColumns(*this);
   CheckMapsAndSessions(*this);
   CheckConsecutive(*this);
+  CheckScaling(*this);
   SLAM_THROW_IF_NOT(ConfigError, frame_step >= 1)
       << "frame_step: must be >= 1, got " << frame_step;
   SLAM_THROW_IF_NOT(ConfigError, max_frames_per_session >= 0)
@@ -312,6 +334,14 @@ ExperimentOptions ReadExperimentOptions(const std::string& path) {
   root.Read("frame_step", &options.frame_step);
   root.Read("max_frames_per_session", &options.max_frames_per_session);
   root.Read("session_clock_times", &options.session_clock_times);
+  if (root.Has("scaling")) {
+    SLAM_THROW_IF_NOT(ConfigError, root.Raw("scaling").is_object())
+        << root.where() << ".scaling: expected an object {\"maps\": [map labels]}";
+    JsonFields scaling = root.Child("scaling");
+    options.scaling.emplace();
+    scaling.Read("maps", &options.scaling->maps);
+    scaling.RejectUnknown();
+  }
   root.RejectUnknown();
   try {
     options.Check();

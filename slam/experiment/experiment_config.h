@@ -4,6 +4,7 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -50,6 +51,15 @@ struct ConsecutivePair {
   std::string localization_session;  // the later mapping session replayed against it
 };
 
+// The scaling curve of the report (issue 46): maps of growing size, each one
+// of the config's own maps, in the curve's order ("1", "1-2", "1-2-3", ...).
+// It adds no job: the report lays out what the maps' jobs measured (nodes,
+// LCD + TE per frame, memory, map open time, re-localization) against the
+// number of sessions in each map.
+struct ScalingCurve {
+  std::vector<std::string> maps;  // map labels, at least 2, listed once, none "closest in time"
+};
+
 struct ExperimentOptions {
   std::string dataset_path;            // dataset folder or file
   std::string dataset_format = "auto"; // synthetic | tum | rtabmap-images | rtabmap-db | auto
@@ -71,6 +81,8 @@ struct ExperimentOptions {
   // dataset's: the "closest in time" map (1|2|...|6) and the consecutive
   // pairs' gap classes need them.
   std::map<std::string, std::string> session_clock_times;
+  // "scaling": {"maps": [...]}; absent = no scaling section in the report.
+  std::optional<ScalingCurve> scaling;
 
   // Throws ConfigError naming the field.
   void Check() const;

@@ -33,8 +33,8 @@ std::string ShellQuote(const std::string& text) {
 bool IsReportEntry(const std::string& name) {
   static const char* const kNames[] = {"tables",        "figures",      "tables.md",
                                        "tables.tex",    "cells.csv",    "timeline.csv",
-                                       "consecutive.csv", "agreement.md", "agreement.json",
-                                       "report.md"};
+                                       "consecutive.csv", "scaling.csv", "agreement.md",
+                                       "agreement.json", "report.md"};
   for (const char* known : kNames) {
     const std::string partial = std::string(known) + ".partial-";
     if (name == known || name.rfind(partial, 0) == 0) return true;

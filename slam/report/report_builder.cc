@@ -9,6 +9,7 @@
 #include "slam/core/check.h"
 #include "slam/io/output_safety.h"
 #include "slam/report/report_table_ids.h"
+#include "slam/report/scaling_tables.h"
 
 namespace duskmap {
 namespace fs = std::filesystem;
@@ -611,6 +612,9 @@ ExperimentReport BuildReport(const ExperimentOptions& options, const ExperimentP
   for (auto& t : ConsecutiveTables(options, plan, results, paper, &report.consecutive_csv)) {
     report.tables.push_back(t);
   }
+  ScalingSection scaling = BuildScalingSection(options, plan, results.localization, report.tables);
+  for (auto& t : scaling.tables) report.tables.push_back(std::move(t));
+  report.scaling_csv = std::move(scaling.csv);
   report.cells_csv = CellsCsv(plan, results);
   report.timeline_csv = TimelineCsv(results);
   report.single_maps = BuildSingleMapMatrix(options, plan, results);
@@ -635,6 +639,11 @@ void WriteReport(const ExperimentReport& report, const fs::path& dir) {
   WriteText(dir / "cells.csv", report.cells_csv);
   WriteText(dir / "timeline.csv", report.timeline_csv);
   if (!report.consecutive_csv.empty()) WriteText(dir / "consecutive.csv", report.consecutive_csv);
+  if (!report.scaling_csv.empty()) {
+    WriteText(dir / "scaling.csv", report.scaling_csv);
+  } else {
+    fs::remove(dir / "scaling.csv", error);  // an earlier report's curve
+  }
   if (report.agreement) {
     WriteText(dir / "agreement.md", AgreementToMarkdown(*report.agreement));
     WriteText(dir / "agreement.json", AgreementToJson(*report.agreement).dump(2) + "\n");

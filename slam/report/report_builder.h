@@ -38,6 +38,8 @@ struct ExperimentReport {
   // One line per frame of each localization job, for the over-time figure.
   std::string timeline_csv;
   std::string consecutive_csv;
+  // The scaling curve's data (scaling_tables.h); empty without a config's "scaling".
+  std::string scaling_csv;
   SingleMapMatrix single_maps;
   // How far the tables agree with the paper; only with the paper's numbers.
   std::optional<AgreementReport> agreement;

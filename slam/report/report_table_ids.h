@@ -21,6 +21,13 @@ inline constexpr char kTableTimingBudget[] = "timing_budget";
 inline constexpr char kTableConsecutiveMaxGapM[] = "consecutive_max_gap_m";
 inline constexpr char kTableConsecutiveWithin55cmPct[] = "consecutive_within_55cm_pct";
 inline constexpr char kTableConsecutiveWithin55cmBoundPct[] = "consecutive_within_55cm_bound_pct";
+// The scaling curve (scaling_tables.h), with a config's "scaling" only.
+inline constexpr char kTableScalingNodes[] = "scaling_nodes";
+inline constexpr char kTableScalingLcdTeMs[] = "scaling_lcd_te_ms";
+inline constexpr char kTableScalingMemoryMb[] = "scaling_memory_mb";
+inline constexpr char kTableScalingMapOpenS[] = "scaling_map_open_s";
+inline constexpr char kTableScalingRelocalizationPct[] = "scaling_relocalization_pct";
+inline constexpr char kTableScalingCorrectPct[] = "scaling_correct_pct";
 
 // Rows of the timing table read back.
 inline constexpr char kRowFeatureDetectionMs[] = "feature_detection_ms";

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "slam/core/check.h"
+#include "tests/testing/error_of.h"
 #include "tests/testing/temp_dir.h"
 
 namespace duskmap {
@@ -79,6 +80,44 @@ TEST(ReadExperimentOptions, RejectsUnknownFeatureAndBadMap) {
                    "map.json", R"({"dataset": {"path": "d"}, "features": ["SI"],
                                    "maps": ["1+-2"], "localization_sessions": ["A"]})")),
                ConfigError);
+}
+
+
+// A config with maps 1, 1+2, 1-2-3 and 1|2 and the given "scaling" value
+// (none when empty).
+std::string ScalingConfig(const std::string& name, const std::string& scaling) {
+  return WriteTemp(name, R"({"dataset": {"path": "d"}, "features": ["SI"],
+                            "maps": ["1", "1+2", "1-2-3", "1|2"],
+                            "localization_sessions": ["A"])" +
+                             (scaling.empty() ? std::string() : ", \"scaling\": " + scaling) + "}");
+}
+
+TEST(ReadExperimentOptions, ReadsTheScalingCurveInItsOrder) {
+  const ExperimentOptions options =
+      ReadExperimentOptions(ScalingConfig("scaling.json", R"({"maps": ["1", "1+2", "1-2-3"]})"));
+  ASSERT_TRUE(options.scaling.has_value());
+  EXPECT_EQ(options.scaling->maps, (std::vector<std::string>{"1", "1+2", "1-2-3"}));
+  EXPECT_FALSE(ReadExperimentOptions(ScalingConfig("no_scaling.json", "")).scaling.has_value());
+}
+
+TEST(ReadExperimentOptions, RejectsABadScalingCurveInOneLineNamingTheKey) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {R"({"maps": ["1", "2"]})", "scaling.maps: '2' is not one of the config's maps"},
+      {R"({"maps": ["1", "1+2", "1"]})", "scaling.maps: '1' listed twice"},
+      {R"({"maps": ["1"]})", "scaling.maps: a curve needs at least 2 maps, got 1"},
+      {R"({})", "scaling.maps: a curve needs at least 2 maps, got 0"},
+      {R"({"maps": ["1", "1|2"]})", "scaling.maps: '1|2' is a closest-in-time map"},
+      {R"({"maps": ["1", "1+2"], "map": ["1"]})", "scaling: unknown key 'map'"},
+      {R"({"maps": "1"})", "scaling.maps: wrong type"},
+      {R"(["1", "1+2"])", "scaling: expected an object"},
+  };
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const std::string path = ScalingConfig("bad_scaling" + std::to_string(i) + ".json", cases[i].first);
+    const std::string error = testing::ErrorOf([&] { ReadExperimentOptions(path); });
+    EXPECT_NE(error.find(path), std::string::npos) << cases[i].first << ": " << error;
+    EXPECT_NE(error.find(cases[i].second), std::string::npos) << cases[i].first << ": " << error;
+    EXPECT_EQ(error.find('\n'), std::string::npos) << error;
+  }
 }
 
 }  // namespace

@@ -190,6 +190,40 @@ TEST(BuildReport, MergedShardsEqualOneUnshardedRun) {
   EXPECT_EQ(one.cells_csv, merged.cells_csv);
 }
 
+TEST(BuildReport, AScalingCurveAddsItsTablesAndDataAndChangesNothingElse) {
+  const ExperimentOptions plain = SmallOptions();
+  ExperimentOptions curve = plain;
+  curve.scaling = ScalingCurve{{"1", "1+6"}};
+  const ExperimentPlan plan = PlanExperiment(plain, Clock());
+  const fs::path dir = ProcessTempDir("report_scaling");
+  FakeExecutor executor;
+  ASSERT_TRUE(RunJobs(plan, executor, {dir, 1, false}).ok());
+  const ExperimentResults results = CollectResults(plan, {dir});
+  const ExperimentReport without = BuildReport(plain, plan, results, std::nullopt);
+  const ExperimentReport with = BuildReport(curve, plan, results, std::nullopt);
+  for (const ReportTable& t : without.tables) EXPECT_NE(t.id().rfind("scaling_", 0), 0u) << t.id();
+  EXPECT_TRUE(without.scaling_csv.empty());
+  // The report's own tables and data as without the curve, the curve's after them.
+  ASSERT_EQ(with.tables.size(), without.tables.size() + 6);
+  for (size_t i = 0; i < without.tables.size(); ++i) {
+    EXPECT_EQ(with.tables[i].ToMarkdown(), without.tables[i].ToMarkdown());
+  }
+  EXPECT_EQ(with.tables.back().id(), kTableScalingCorrectPct);
+  EXPECT_EQ(with.tables[without.tables.size()].rows(),
+            (std::vector<std::string>{"1 (1)", "2 (1+6)"}));
+  EXPECT_EQ(with.cells_csv, without.cells_csv);
+  EXPECT_EQ(with.timeline_csv, without.timeline_csv);
+  EXPECT_EQ(with.consecutive_csv, without.consecutive_csv);
+
+  const fs::path out = dir / "report";
+  WriteReport(with, out);
+  EXPECT_TRUE(fs::exists(out / "scaling.csv"));
+  EXPECT_TRUE(fs::exists(out / "tables" / "scaling_curve_nodes_in_the_map_graph_size_after.csv"));
+  // Rewritten without the curve, the earlier curve's data goes.
+  WriteReport(without, out);
+  EXPECT_FALSE(fs::exists(out / "scaling.csv"));
+}
+
 TEST(CollectResults, MalformedSummaryNamesTheFile) {
   const ExperimentOptions options = SmallOptions();
   const ExperimentPlan plan = PlanExperiment(options, Clock());
