@@ -9,6 +9,9 @@ Writes into REPORT_DIR/figures/:
   relocalization_over_time_<F>.png  per localization session, the mapping session matched
   consecutive.png                 consecutive-session re-localization (map session x later session)
   merged_graph_<F>.png            top view of a merged map's optimised graph over ground truth
+  scaling.png                     the scaling curve (scaling.csv, a config's "scaling"): LCD + TE
+                                  per frame, memory, map open time and re-localization against
+                                  the number of sessions in the map, one line per feature
 and REPORT_DIR/report.md, which puts the tables (tables.md) and the figures together.
 """
 import argparse
@@ -20,6 +23,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402
 
 
 def read_csv(path):
@@ -175,6 +179,50 @@ def merged_graphs(jobs_dirs, out_dir):
     return written
 
 
+SCALING_PANELS = [
+    ("lcd_te_ms", "loop closure + transformation estimation\nper frame (ms, median)"),
+    ("memory_mb", "memory needed for localization (MB)"),
+    ("map_open_s", "map open time (s): load + localizer setup"),
+    ("relocalized_pct", "re-localization (% of frames)"),
+]
+
+
+def scaling_curve(rows, out_dir):
+    """Four panels against the sessions in the map (log2 axis, ticks at the curve's counts)."""
+    if not rows:
+        return []
+    counts = sorted({int(r["sessions"]) for r in rows})
+    fig, axes = plt.subplots(2, 2, figsize=(10, 7))
+    for ax, (key, label) in zip(axes.flat, SCALING_PANELS):
+        for i, feature in enumerate(ordered(r["feature"] for r in rows)):
+            points = [(int(r["sessions"]), float(r[key])) for r in rows
+                      if r["feature"] == feature and r.get(key, "") != ""]
+            if points:
+                ax.plot([p[0] for p in points], [p[1] for p in points], "o-", markersize=4,
+                        linewidth=1.2, color=plt.cm.tab10(i % 10), label=feature)
+        ax.set_xscale("log", base=2)
+        ax.set_xticks(counts, [str(c) for c in counts])
+        ax.xaxis.set_minor_locator(matplotlib.ticker.NullLocator())
+        ax.set_xlabel("sessions in the map")
+        ax.set_title(label, fontsize=9)
+        ax.grid(True, alpha=0.3)
+    axes.flat[3].set_ylim(0, 100)
+    handles, labels = [], []
+    for ax in axes.flat:  # every feature once, from whichever panel has it
+        for handle, label in zip(*ax.get_legend_handles_labels()):
+            if label not in labels:
+                handles.append(handle)
+                labels.append(label)
+    fig.legend(handles, labels, loc="center right", fontsize=8, title="feature", title_fontsize=8)
+    fig.suptitle("Scaling curve: maps of growing size, localization sessions of other days",
+                 fontsize=10)
+    fig.tight_layout(rect=(0, 0, 0.9, 1))
+    path = os.path.join(out_dir, "scaling.png")
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return [path]
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("report_dir")
@@ -196,6 +244,7 @@ def main():
     written += consecutive_matrix(read_csv(os.path.join(args.report_dir, "consecutive.csv")),
                                   out_dir)
     written += merged_graphs(args.jobs_dir, out_dir)
+    written += scaling_curve(read_csv(os.path.join(args.report_dir, "scaling.csv")), out_dir)
     write_report_md(args.report_dir, args.title, written)
     for path in written:
         print(path)
@@ -209,6 +258,8 @@ FIGURE_CAPTIONS = [
                                   "each frame was re-localized on"),
     ("consecutive", "Consecutive sessions: frames re-localized within 55 cm of the previous one"),
     ("merged_graph_", "Optimised graph of the largest merged map over its ground truth (top view)"),
+    ("scaling", "Scaling curve: LCD + TE per frame, memory, map open time and re-localization "
+                "against the number of sessions in the map (data in scaling.csv)"),
 ]
 
 
