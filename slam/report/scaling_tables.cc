@@ -52,8 +52,7 @@ std::vector<MapSpec> CurveMaps(const ExperimentOptions& options) {
 }
 
 // The timings of the localization jobs on one map (its matrix cells).
-void MeasureJobTimes(const ExperimentPlan& plan,
-                     const std::map<std::string, LocalizationJobSummary>& localization,
+void MeasureJobTimes(const ExperimentPlan& plan, const LocalizationSummaries& localization,
                      ScalingPoint* point) {
   Mean lcd_te, lcd, te, load, setup;
   for (const MatrixCell& cell : plan.cells) {
@@ -77,8 +76,9 @@ void MeasureJobTimes(const ExperimentPlan& plan,
   }
 }
 
-std::vector<ScalingPoint> MeasurePoints(const ExperimentOptions& options, const ExperimentPlan& plan,
-                                        const std::map<std::string, LocalizationJobSummary>& localization,
+std::vector<ScalingPoint> MeasurePoints(const ExperimentOptions& options,
+                                        const ExperimentPlan& plan,
+                                        const LocalizationSummaries& localization,
                                         const std::vector<ReportTable>& tables) {
   const auto cell = [&tables](const char* id, const std::string& row, const std::string& feature) {
     return CellValue(FindTable(tables, id), row, feature, TableSide::kMeasured);
@@ -145,7 +145,9 @@ std::vector<ReportTable> Tables(const ExperimentOptions& options,
       const size_t r = std::find_if(curve.begin(), curve.end(),
                                     [&p](const MapSpec& m) { return m.label == p.map; }) -
                        curve.begin();
-      if (const std::optional<double>& v = p.*measure.value) table.SetMeasured(rows[r], p.feature, *v);
+      if (const std::optional<double>& v = p.*measure.value) {
+        table.SetMeasured(rows[r], p.feature, *v);
+      }
     }
     tables.push_back(table);
   }
@@ -188,7 +190,7 @@ std::vector<std::string> ScalingRowLabels(const std::vector<MapSpec>& curve) {
 }
 
 ScalingSection BuildScalingSection(const ExperimentOptions& options, const ExperimentPlan& plan,
-                                   const std::map<std::string, LocalizationJobSummary>& localization,
+                                   const LocalizationSummaries& localization,
                                    const std::vector<ReportTable>& tables) {
   ScalingSection section;
   if (!options.scaling) return section;

@@ -47,6 +47,8 @@ struct ScalingSection {
   std::string csv;  // scaling.csv: feature,map,sessions,<measures>
 };
 
+using LocalizationSummaries = std::map<std::string, LocalizationJobSummary>;  // by job id
+
 // The tables' row labels, one per curve map: "<sessions> (<label>)", a label
 // longer than 24 characters shortened to its first and last sessions
 // ("48 (a1-...-h6)") unless two rows would then read the same.
@@ -57,7 +59,7 @@ std::vector<std::string> ScalingRowLabels(const std::vector<MapSpec>& curve);
 // re-localization tables are read by id, report_table_ids.h); `localization`
 // the localization jobs' summaries by job id.
 ScalingSection BuildScalingSection(const ExperimentOptions& options, const ExperimentPlan& plan,
-                                   const std::map<std::string, LocalizationJobSummary>& localization,
+                                   const LocalizationSummaries& localization,
                                    const std::vector<ReportTable>& tables);
 
 }  // namespace duskmap

@@ -112,7 +112,8 @@ TEST(ReadExperimentOptions, RejectsABadScalingCurveInOneLineNamingTheKey) {
       {R"(["1", "1+2"])", "scaling: expected an object"},
   };
   for (size_t i = 0; i < cases.size(); ++i) {
-    const std::string path = ScalingConfig("bad_scaling" + std::to_string(i) + ".json", cases[i].first);
+    const std::string path =
+        ScalingConfig("bad_scaling" + std::to_string(i) + ".json", cases[i].first);
     const std::string error = testing::ErrorOf([&] { ReadExperimentOptions(path); });
     EXPECT_NE(error.find(path), std::string::npos) << cases[i].first << ": " << error;
     EXPECT_NE(error.find(cases[i].second), std::string::npos) << cases[i].first << ": " << error;
