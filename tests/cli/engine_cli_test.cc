@@ -113,6 +113,28 @@ std::string FileBytes(const std::string& path) {
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
+// scripts/time_map_open.sh (issue 46, item 4): one line per run with the
+// process wall and where it went, on a copy of the session that holds its
+// first frame only; the map and the dataset untouched; bad input one line.
+TEST_F(EngineCli, TimeMapOpenScriptTimesTheFirstFrame) {
+  const std::string map = dir_ + "/open.db";
+  ASSERT_EQ(RunDuskmap("map --dataset " + dir_ + "/data --sessions 1 --output " + map).exit_code, 0);
+  const std::string saved = FileBytes(map);
+  const std::string script = std::string(DUSKMAP_SOURCE_DIR) + "/scripts/time_map_open.sh";
+  const std::string run = "DUSKMAP=" + std::string(DUSKMAP_EXE) + " bash " + script + " " + map + " ";
+  const Result timed = duskmap::testing::RunShell(run + dir_ + "/data A 2");
+  ASSERT_EQ(timed.exit_code, 0) << timed.output;
+  EXPECT_EQ(std::count(timed.output.begin(), timed.output.end(), '\n'), 2) << timed.output;
+  EXPECT_EQ(timed.output.rfind("wall_s ", 0), 0u) << timed.output;
+  for (const std::string key : {"load_s ", "setup_s ", "restore_s ", "frame_ms ", "lcd "}) {
+    EXPECT_NE(timed.output.find(key), std::string::npos) << key << timed.output;
+  }
+  EXPECT_EQ(FileBytes(map), saved) << "the script modified the map";
+  const Result bad = duskmap::testing::RunShell(run + dir_ + "/data Z");
+  EXPECT_EQ(bad.exit_code, 1) << bad.output;
+  EXPECT_EQ(bad.output, dir_ + "/data: no session 'Z'\n");
+}
+
 TEST_F(EngineCli, SeveralSessionsOnOneLoadEqualSeparateRuns) {
   const std::string map = dir_ + "/multi.db";
   ASSERT_EQ(RunDuskmap("map --dataset " + dir_ + "/data --sessions 1 --output " + map).exit_code, 0);

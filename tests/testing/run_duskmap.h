@@ -21,17 +21,23 @@ struct CliResult {
   std::string output;  // stdout and stderr
 };
 
-// `<prefix>duskmap <args> 2>&1` through the shell (`prefix`: a `cd`, a
-// ulimit); exit_code -1 when it did not exit normally.
-inline CliResult RunDuskmap(const std::string& args, const std::string& prefix = "") {
+// `<command> 2>&1` through the shell; exit_code -1 when it did not exit
+// normally.
+inline CliResult RunShell(const std::string& command) {
   CliResult result;
-  FILE* pipe = ::popen((prefix + std::string(DUSKMAP_EXE) + " " + args + " 2>&1").c_str(), "r");
+  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
   if (!pipe) return result;
   std::array<char, 4096> buffer;
   while (size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
   const int status = ::pclose(pipe);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
+}
+
+// `<prefix>duskmap <args> 2>&1` through the shell (`prefix`: a `cd`, a
+// ulimit).
+inline CliResult RunDuskmap(const std::string& args, const std::string& prefix = "") {
+  return RunShell(prefix + std::string(DUSKMAP_EXE) + " " + args);
 }
 
 // Generates the box-furniture apartment (configs/sunset_apartment_boxes.json) with
