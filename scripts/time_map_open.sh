@@ -33,8 +33,7 @@ src="$dataset/$session"
 for entry in "$src"/*; do
   name=$(basename "$entry")
   case $name in
-    *.txt) grep '^#' "$entry" > "$one/$session/$name"
-           grep -v '^#' "$entry" | head -n 1 >> "$one/$session/$name" ;;
+    *.txt) { grep '^#' "$entry" || true; grep -m 1 -v '^#' "$entry"; } > "$one/$session/$name" ;;
     *) ln -s "$(realpath "$entry")" "$one/$session/$name" ;;
   esac
 done
