@@ -16,6 +16,7 @@ and REPORT_DIR/report.md, which puts the tables (tables.md) and the figures toge
 """
 import argparse
 import csv
+import json
 import os
 import sys
 
@@ -263,11 +264,25 @@ FIGURE_CAPTIONS = [
 ]
 
 
+def compares_with_paper(agreement_json):
+    """Whether agreement.json holds a deviation over some cells or a decided finding."""
+    if not os.path.exists(agreement_json):
+        return True  # written before agreement.json: keep agreement.md as it is
+    with open(agreement_json) as f:
+        agreement = json.load(f)
+    return (any(d.get("cells", 0) > 0 for d in agreement.get("deviations", []))
+            or agreement.get("findings_decided", 0) > 0)
+
+
 def write_report_md(report_dir, title, figures):
     tables_path = os.path.join(report_dir, "tables.md")
     tables = open(tables_path).read() if os.path.exists(tables_path) else ""
     agreement_path = os.path.join(report_dir, "agreement.md")
     agreement = open(agreement_path).read() if os.path.exists(agreement_path) else ""
+    if agreement and not compares_with_paper(os.path.join(report_dir, "agreement.json")):
+        # An experiment of its own (the lifelong scaling curve): nothing to agree with.
+        agreement = ("No cell of this experiment has a paper value and no finding is decided: "
+                     "agreement.md lists why.\n")
     lines = [f"# duskmap report{': ' + title if title else ''}", "",
              "Each cell: measured (paper). Tables as CSV in tables/, LaTeX in tables.tex.", ""]
     if agreement:

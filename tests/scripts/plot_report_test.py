@@ -1,6 +1,8 @@
 #!/usr/bin/python3
 """scripts/plot_report.py's scaling figure: drawn from scaling.csv (a measure left empty where no job
-measured it) and listed in report.md; without scaling.csv neither."""
+measured it) and listed in report.md; without scaling.csv neither. report.md's agreement section:
+kept when some cell or finding compares with the paper, one line when none does."""
+import json
 import os
 import subprocess
 import sys
@@ -61,6 +63,34 @@ class ScalingFigure(unittest.TestCase):
             self.assertFalse(os.path.exists(os.path.join(root, "figures", "scaling.png")))
             with open(os.path.join(root, "report.md")) as f:
                 self.assertNotIn("scaling", f.read().lower())
+
+
+def write_agreement(root, cells, decided):
+    with open(os.path.join(root, "agreement.md"), "w") as f:
+        f.write("**Mean absolute deviation from the paper** AGREEMENT TABLE\n")
+    with open(os.path.join(root, "agreement.json"), "w") as f:
+        json.dump({"deviations": [{"name": "re-localization, single-session maps", "cells": cells}],
+                   "findings_decided": decided}, f)
+
+
+class AgreementSection(unittest.TestCase):
+    def report_md(self, cells, decided):
+        with tempfile.TemporaryDirectory() as root:
+            write_report_dir(root, None)
+            write_agreement(root, cells, decided)
+            result = plot(root)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            with open(os.path.join(root, "report.md")) as f:
+                return f.read()
+
+    def test_kept_when_a_cell_or_a_finding_compares(self):
+        self.assertIn("AGREEMENT TABLE", self.report_md(cells=36, decided=0))
+        self.assertIn("AGREEMENT TABLE", self.report_md(cells=0, decided=1))
+
+    def test_one_line_when_nothing_compares(self):
+        report = self.report_md(cells=0, decided=0)
+        self.assertNotIn("AGREEMENT TABLE", report)
+        self.assertIn("No cell of this experiment has a paper value", report)
 
 
 if __name__ == "__main__":
