@@ -34,6 +34,8 @@ const PlaceGraph::Entry& PlaceGraph::At(NodeId node) const {
 void PlaceGraph::AddNode(NodeId node, SessionId session) {
   SLAM_THROW_IF_NOT(InputError, !Contains(node)) << "PlaceGraph: node " << node << " already added";
   Entry entry;
+  entry.id = node;
+  entry.index = next_index_++;
   entry.session = session;
   entry.version = next_version_++;
   nodes_.emplace(node, std::move(entry));
@@ -48,8 +50,9 @@ void PlaceGraph::AddLink(NodeId a, NodeId b, LinkType type) {
     return e.other == b && e.type == type;
   });
   if (exists) return;
-  edges_a.push_back({b, type});
-  nodes_.at(b).edges.push_back({a, type});
+  Entry& entry_b = nodes_.at(b);
+  edges_a.push_back({b, type, &entry_b});
+  entry_b.edges.push_back({a, type, &nodes_.at(a)});
   if (LinkCost(type) < 0) return;  // proximity links change no neighbourhood
   // Nothing has read a neighbourhood or a version yet (a map's links being
   // added after its nodes): nothing cached can be stale.
@@ -92,28 +95,35 @@ void PlaceGraph::Invalidate(const std::vector<NodeMargin>& nodes) {
 
 // 0-1 breadth-first search (loop-closure links cost 0, odometry links 1).
 std::vector<NodeMargin> PlaceGraph::Search(NodeId start) const {
-  std::unordered_map<NodeId, int> margin{{start, 0}};
-  std::deque<NodeId> queue{start};
+  const Entry& first = At(start);
+  if (scratch_margin_.size() < next_index_) scratch_margin_.resize(next_index_, -1);
+  std::vector<const Entry*> reached{&first};
+  scratch_margin_[first.index] = 0;
+  std::deque<const Entry*> queue{&first};
   while (!queue.empty()) {
-    const NodeId n = queue.front();
+    const Entry* n = queue.front();
     queue.pop_front();
-    const int m = margin.at(n);
-    for (const Edge& e : nodes_.at(n).edges) {
+    const int m = scratch_margin_[n->index];
+    for (const Edge& e : n->edges) {
       const int cost = LinkCost(e.type);
       if (cost < 0 || m + cost > max_margin_) continue;
-      auto found = margin.find(e.other);
-      if (found != margin.end() && found->second <= m + cost) continue;
-      margin[e.other] = m + cost;
+      int& known = scratch_margin_[e.entry->index];
+      if (known >= 0 && known <= m + cost) continue;
+      if (known < 0) reached.push_back(e.entry);
+      known = m + cost;
       if (cost == 0) {
-        queue.push_front(e.other);
+        queue.push_front(e.entry);
       } else {
-        queue.push_back(e.other);
+        queue.push_back(e.entry);
       }
     }
   }
   std::vector<NodeMargin> out;
-  out.reserve(margin.size());
-  for (const auto& [id, m] : margin) out.push_back({id, m});
+  out.reserve(reached.size());
+  for (const Entry* e : reached) {
+    out.push_back({e->id, scratch_margin_[e->index]});
+    scratch_margin_[e->index] = -1;
+  }
   std::sort(out.begin(), out.end(), [](const NodeMargin& x, const NodeMargin& y) {
     return x.margin != y.margin ? x.margin < y.margin : x.node < y.node;
   });

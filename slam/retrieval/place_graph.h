@@ -27,6 +27,12 @@ class PlaceGraph {
   // `max_margin`: neighbourhoods are cut beyond this margin (16 for the
   // reference's 18 Bayes/PredictionLC values).
   explicit PlaceGraph(int max_margin = 16);
+  // Edges point at their nodes' entries: a copy would point into the
+  // original; a move keeps them (the map's values keep their address).
+  PlaceGraph(const PlaceGraph&) = delete;
+  PlaceGraph& operator=(const PlaceGraph&) = delete;
+  PlaceGraph(PlaceGraph&&) = default;
+  PlaceGraph& operator=(PlaceGraph&&) = default;
 
   // Throws InputError if present.
   void AddNode(NodeId node, SessionId session);
@@ -42,7 +48,8 @@ class PlaceGraph {
   int max_margin() const { return max_margin_; }
 
   // Nodes within max_margin of `node` (itself included, margin 0), by
-  // increasing margin then id. Cached until a link or removal nearby.
+  // increasing margin then id. Cached until a link or removal nearby. Not for
+  // concurrent readers (the cache and the search's scratch are shared).
   const std::vector<NodeMargin>& Neighbourhood(NodeId node) const;
   // Bumped whenever the node's neighbourhood may have changed.
   uint64_t Version(NodeId node) const;
@@ -50,11 +57,15 @@ class PlaceGraph {
   std::vector<NodeId> OdometryNeighbours(NodeId node) const;
 
  private:
+  struct Entry;
   struct Edge {
     NodeId other;
     LinkType type;
+    const Entry* entry;  // other's (an unordered_map's values keep their address)
   };
   struct Entry {
+    NodeId id = 0;
+    uint32_t index = 0;  // dense, for the search's scratch
     SessionId session = 0;
     std::vector<Edge> edges;
     mutable std::vector<NodeMargin> neighbourhood;
@@ -68,6 +79,10 @@ class PlaceGraph {
   int max_margin_;
   std::unordered_map<NodeId, Entry> nodes_;
   uint64_t next_version_ = 1;
+  uint32_t next_index_ = 0;
+  // Search's margin per Entry::index, -1 between searches (a map's first
+  // frame searches every node's neighbourhood: no hashing per step).
+  mutable std::vector<int> scratch_margin_;
   // Whether a neighbourhood or a version was read: until then links and
   // removals invalidate nothing (a map's links added after its nodes cost
   // no searches).
