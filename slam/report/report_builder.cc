@@ -8,6 +8,7 @@
 
 #include "slam/core/check.h"
 #include "slam/io/output_safety.h"
+#include "slam/report/report_cells.h"
 #include "slam/report/report_table_ids.h"
 #include "slam/report/scaling_tables.h"
 
@@ -42,19 +43,6 @@ struct CellTotals {
     jump_mm_sum += s.mean_jump_mm * s.num_relocalized;
   }
   double Pct(int count) const { return frames > 0 ? 100.0 * count / frames : 0.0; }
-};
-
-// Mean of values added, empty when none was.
-struct Mean {
-  double sum = 0.0;
-  int count = 0;
-  void Add(double value) {
-    sum += value;
-    ++count;
-  }
-  std::optional<double> Get() const {
-    return count > 0 ? std::optional<double>(sum / count) : std::nullopt;
-  }
 };
 
 std::vector<std::string> MapRows(const ExperimentOptions& options, bool own_maps_only) {
@@ -251,9 +239,9 @@ std::vector<ReportTable> MapTables(const ExperimentOptions& options, const Exper
 // One feature's column of the timing table, as measured.
 struct FeatureTimings {
   // Over the feature's localization jobs (each job once).
-  Mean detection, te, features, lcd_single, lcd_full, lcd_reduced, lcd_te_full;
+  OptionalMean detection, te, features, lcd_single, lcd_full, lcd_reduced, lcd_te_full;
   // Over its maps.
-  Mean vocab_single, map_single_s;
+  OptionalMean vocab_single, map_single_s;
   std::optional<double> vocab_full, vocab_reduced, descriptor_bytes;
 };
 
@@ -561,7 +549,7 @@ ReportTable TimingBudgetTable(const ExperimentOptions& options, const Experiment
                     "mapping",
                     rows, options.features, 2);
   for (const std::string& feature : options.features) {
-    Mean load, load_full, setup, restore, restore_full, frames, build, build_full;
+    OptionalMean load, load_full, setup, restore, restore_full, frames, build, build_full;
     int jobs = 0, loads = 0, rebuilt = 0;
     for (const auto& [id, s] : results.localization) {
       const Job* job = plan.FindJob(id);

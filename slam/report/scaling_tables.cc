@@ -12,19 +12,6 @@ namespace {
 
 constexpr size_t kMaxRowLabelChars = 24;
 
-// Mean of values added, empty when none was.
-struct Mean {
-  double sum = 0.0;
-  int count = 0;
-  void Add(double value) {
-    sum += value;
-    ++count;
-  }
-  std::optional<double> Get() const {
-    return count > 0 ? std::optional<double>(sum / count) : std::nullopt;
-  }
-};
-
 char Separator(MapKind kind) {
   switch (kind) {
     case MapKind::kMerged: return '+';
@@ -54,7 +41,7 @@ std::vector<MapSpec> CurveMaps(const ExperimentOptions& options) {
 // The timings of the localization jobs on one map (its matrix cells).
 void MeasureJobTimes(const ExperimentPlan& plan, const LocalizationSummaries& localization,
                      ScalingPoint* point) {
-  Mean lcd_te, lcd, te, load, setup;
+  OptionalMean lcd_te, lcd, te, load, setup;
   for (const MatrixCell& cell : plan.cells) {
     if (cell.row != point->map || cell.feature != point->feature) continue;
     const auto it = localization.find(cell.job_id);
@@ -83,9 +70,10 @@ std::vector<ScalingPoint> MeasurePoints(const ExperimentOptions& options,
   const auto cell = [&tables](const char* id, const std::string& row, const std::string& feature) {
     return CellValue(FindTable(tables, id), row, feature, TableSide::kMeasured);
   };
+  const std::vector<MapSpec> curve = CurveMaps(options);
   std::vector<ScalingPoint> points;
   for (const std::string& feature : options.features) {
-    for (const MapSpec& map : CurveMaps(options)) {
+    for (const MapSpec& map : curve) {
       ScalingPoint p;
       p.feature = feature;
       p.map = map.label;
