@@ -86,41 +86,79 @@ void BayesFilter::InvalidateAround(NodeId node) {
   }
 }
 
+namespace {
+
+void AppendVarint(uint32_t value, std::vector<uint8_t>* out) {
+  while (value >= 0x80) {
+    out->push_back(static_cast<uint8_t>(value | 0x80));
+    value >>= 7;
+  }
+  out->push_back(static_cast<uint8_t>(value));
+}
+
+uint32_t ReadVarint(const uint8_t** at) {
+  uint32_t value = 0;
+  for (int shift = 0;; shift += 7) {
+    const uint8_t byte = *(*at)++;
+    value |= static_cast<uint32_t>(byte & 0x7f) << shift;
+    if (byte < 0x80) return value;
+  }
+}
+
+}  // namespace
+
 // Column of place j (spec §4.2 steps 1-3): weights by graph margin to the
 // places in the state, missing mass on the diagonal, rescaled to 1 - c[0].
+// Every place of one margin has the same weight, so the column stores groups
+// (itself, then each margin) rather than one weight per place.
 void BayesFilter::BuildColumn(uint32_t slot) {
   const std::vector<double>& c = options_.prediction;
   const NodeId node = node_of_[slot];
-  Column& column = columns_[slot];
-  column.entries.clear();
   const int max_margin = options_.MaxMargin();
+  // by_margin_[0] holds the place itself, by_margin_[m + 1] the others at margin m.
+  by_margin_.resize(static_cast<size_t>(max_margin) + 2);
+  for (std::vector<uint32_t>& group : by_margin_) group.clear();
   double sum = 0.0;
   for (const NodeMargin& m : graph_->Neighbourhood(node)) {
     if (m.margin > max_margin) break;  // sorted by margin
     auto it = slot_of_.find(m.node);
     if (it == slot_of_.end()) continue;
-    const double w = c[m.margin + 1];
-    column.entries.push_back({it->second, static_cast<float>(w)});
-    sum += w;
+    by_margin_[it->second == slot ? 0 : m.margin + 1].push_back(it->second);
+    sum += c[m.margin + 1];
   }
+  std::vector<float> weights(by_margin_.size());
+  weights[0] = static_cast<float>(c[1]);
+  for (int m = 0; m <= max_margin; ++m) weights[m + 1] = static_cast<float>(c[m + 1]);
   const double target = 1.0 - c[0];
   if (sum < sum_weights_ - c[0]) {
-    auto self = std::find_if(column.entries.begin(), column.entries.end(),
-                             [slot](const auto& e) { return e.first == slot; });
-    SLAM_CHECK(self != column.entries.end());
-    self->second += static_cast<float>(sum_weights_ - c[0] - sum);
+    SLAM_CHECK(!by_margin_[0].empty());
+    weights[0] += static_cast<float>(sum_weights_ - c[0] - sum);
     sum = sum_weights_ - c[0];
   }
+  bool drop_small = false;
   if (std::abs(sum - target) > 1e-4) {
-    const double eps = *std::min_element(c.begin(), c.end());
     const double scale = target / sum;
-    for (auto& e : column.entries) e.second = static_cast<float>(e.second * scale);
-    column.entries.erase(std::remove_if(column.entries.begin(), column.entries.end(),
-                                        [eps](const auto& e) { return e.second < eps; }),
-                         column.entries.end());
+    for (float& w : weights) w = static_cast<float>(w * scale);
+    drop_small = true;
   }
+  const double eps = *std::min_element(c.begin(), c.end());
+  Column column;
+  for (size_t g = 0; g < by_margin_.size(); ++g) {
+    std::vector<uint32_t>& group = by_margin_[g];
+    if (group.empty() || (drop_small && weights[g] < eps)) continue;
+    std::sort(group.begin(), group.end());
+    uint32_t previous = 0;
+    for (uint32_t s : group) {
+      AppendVarint(s - previous, &column.slot_deltas);
+      previous = s;
+    }
+    column.groups.push_back({static_cast<uint32_t>(group.size()), weights[g]});
+  }
+  column.slot_deltas.shrink_to_fit();
+  column.groups.shrink_to_fit();
   column.graph_version = graph_->Version(node);
   column.valid = true;
+  columns_[slot] = std::move(column);
   any_column_built_ = true;
 }
 
@@ -132,7 +170,15 @@ void BayesFilter::Predict(std::vector<double>* prior) const {
   for (size_t j = 0; j < posterior_.size(); ++j) {
     const double p = posterior_[j];
     if (p == 0.0 || node_of_[j] == 0) continue;
-    for (const auto& [i, w] : columns_[j].entries) (*prior)[i] += w * p;
+    const uint8_t* at = columns_[j].slot_deltas.data();
+    for (const auto& [count, w] : columns_[j].groups) {
+      const double weighted = w * p;
+      uint32_t i = 0;
+      for (uint32_t k = 0; k < count; ++k) {
+        i += ReadVarint(&at);
+        (*prior)[i] += weighted;
+      }
+    }
   }
 }
 
@@ -194,7 +240,9 @@ std::vector<PlaceProbability> BayesFilter::Top(int k) const {
 
 size_t BayesFilter::TransitionBytes() const {
   size_t bytes = columns_.capacity() * sizeof(Column);
-  for (const Column& c : columns_) bytes += c.entries.capacity() * sizeof(c.entries[0]);
+  for (const Column& c : columns_) {
+    bytes += c.slot_deltas.capacity() + c.groups.capacity() * sizeof(c.groups[0]);
+  }
   return bytes;
 }
 

@@ -165,6 +165,7 @@ void InvertedIndex::ShrinkToFit() {
   for (ReferenceList& list : lists_) list.ShrinkToFit();
   lists_.shrink_to_fit();
   list_words_.shrink_to_fit();
+  word_slots_.Pack();
 }
 
 size_t InvertedIndex::MemoryBytes() const {

@@ -5,8 +5,9 @@
 // Most words are referenced by one node (a word is created by the node whose
 // descriptor it is, and only a revisit adds a second), so a word's list keeps
 // its first reference inline and goes to the heap only from two on; the lists
-// of live words are packed in one array found through the dense WordSlots
-// table (4 bytes per word id) instead of one hash node per word.
+// of live words are packed in one array found through WordSlots (dense while
+// the vocabulary grows, packed after ShrinkToFit) instead of one hash node
+// per word.
 #pragma once
 
 #include <cstddef>
@@ -93,7 +94,8 @@ class InvertedIndex {
 
   // Reserves the word table for ids up to `max_id` (an import knows it).
   void ReserveWords(WordId max_id) { word_slots_.Reserve(max_id); }
-  // Releases spare capacity (after an import: the index will not grow much).
+  // Releases spare capacity and packs the word table (after an import: the
+  // index will not grow much).
   void ShrinkToFit();
   // Bytes held, malloc's per-block overhead and hash buckets included.
   size_t MemoryBytes() const;

@@ -260,6 +260,7 @@ void KdForest::CompactLeaves() {
   }
   pool.shrink_to_fit();
   pool_.swap(pool);
+  slot_.Pack();
 }
 
 void KdForest::Insert(int tree, uint32_t p) {

@@ -85,8 +85,9 @@ class KdForest {
   void Rebuild();
   // Gives every block leaf exactly the entries it holds (a build leaves room
   // for leaf_size + 1 so that insertions rarely move a block): for a forest
-  // that will not grow, e.g. an imported vocabulary used for localization.
-  // Searches are unchanged; a later Add still works (a full block moves).
+  // that will not grow, e.g. an imported vocabulary used for localization,
+  // and packs the id table (word_slots.h). Searches are unchanged; a later
+  // Add still works (a full block moves, the id table turns dense again).
   void CompactLeaves();
   // Reserves the id table for ids up to `max_id`.
   void ReserveIds(WordId max_id) { slot_.Reserve(max_id); }

@@ -137,6 +137,7 @@ bool KdForest::RestoreState(const uint8_t* state, size_t size, const std::vector
   rows_at_build_ = rows_at_build;
   rebuilds_ = rebuilds;
   if (const std::string why = CheckStructure(); !why.empty()) return fail(why);
+  slot_.Pack();  // a stored index is searched, not grown (word_slots.h)
   return true;
 }
 

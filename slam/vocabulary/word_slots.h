@@ -1,8 +1,16 @@
-// Word id -> 32-bit slot through a table indexed by the id itself. Word ids
-// are positive, increase in creation order and are never reused, so the
-// table is as long as the largest id seen: 4 bytes per id, where a hash map
-// costs a heap node (~40 bytes with malloc's rounding) and a bucket per live
-// word.
+// Word id -> 32-bit slot. Word ids are positive, increase in creation order
+// and are never reused. Two forms:
+//  - dense, while the vocabulary grows: a table indexed by the id itself,
+//    4 bytes per id up to the largest, where a hash map costs a heap node
+//    (~40 bytes with malloc's rounding) and a bucket per live word;
+//  - packed (Pack), for a vocabulary that is searched rather than grown (an
+//    imported map): a bitmap of the ids present with the count of set bits
+//    before each 64-bit word, and the slots in id order. 1.5 bits per id up
+//    to the largest plus 4 bytes per live word. A merged multi-session map
+//    keeps a tenth of the word ids it ever created (the 48-session lifelong
+//    map: 238,204 of 2,579,855), so there the dense table costs 10.3 MB and
+//    the packed one 1.4 MB.
+// Setting an id the packed form does not hold turns it dense again.
 #pragma once
 
 #include <algorithm>
@@ -25,51 +33,68 @@ class WordSlots {
   static constexpr uint32_t kNone = ~0u;
 
   uint32_t Find(WordId id) const {
-    return id > 0 && static_cast<size_t>(id) < table_.size() ? table_[id] : kNone;
+    if (id <= 0) return kNone;
+    const size_t i = static_cast<size_t>(id);
+    if (!packed_) return i < table_.size() ? table_[i] : kNone;
+    const size_t rank = PackedRank(i);
+    return rank == kAbsentRank ? kNone : table_[rank];
   }
   bool Contains(WordId id) const { return Find(id) != kNone; }
   size_t size() const { return size_; }
   bool empty() const { return size_ == 0; }
+  bool packed() const { return packed_; }
 
   // Sets (or replaces) the slot of `id` (0 < id <= kMaxWordId, slot != kNone).
-  void Set(WordId id, uint32_t slot) {
-    SLAM_CHECK(id > 0 && id <= kMaxWordId && slot != kNone);
-    if (static_cast<size_t>(id) >= table_.size()) {
-      // Doubling keeps appends of increasing ids amortised O(1).
-      const size_t wanted = static_cast<size_t>(id) + 1;
-      if (wanted > table_.capacity()) table_.reserve(std::max(wanted, 2 * table_.capacity()));
-      table_.resize(wanted, kNone);
-    }
-    if (table_[id] == kNone) ++size_;
-    table_[id] = slot;
-  }
-  // Reserves the table for ids up to `max_id` (an import knows its last id).
-  void Reserve(WordId max_id) {
-    if (max_id > 0 && max_id <= kMaxWordId) table_.reserve(static_cast<size_t>(max_id) + 1);
-  }
+  void Set(WordId id, uint32_t slot);
+  // Reserves the dense table for ids up to `max_id` (an import knows its last id).
+  void Reserve(WordId max_id);
   // False when absent.
-  bool Erase(WordId id) {
-    if (!Contains(id)) return false;
-    table_[id] = kNone;
-    --size_;
-    return true;
-  }
-  void Clear() {
-    table_.clear();
-    table_.shrink_to_fit();
-    size_ = 0;
-  }
+  bool Erase(WordId id);
+  void Clear();
+  // Converts to the packed form when it takes fewer bytes than the dense one.
+  // Lookups are unchanged; the next Set of an id not held makes it dense again.
+  void Pack();
   // Calls f(id, slot) for every id present, in increasing id order.
   template <typename F>
   void ForEach(F f) const {
-    for (size_t id = 1; id < table_.size(); ++id) {
-      if (table_[id] != kNone) f(static_cast<WordId>(id), table_[id]);
+    if (!packed_) {
+      for (size_t id = 1; id < table_.size(); ++id) {
+        if (table_[id] != kNone) f(static_cast<WordId>(id), table_[id]);
+      }
+      return;
+    }
+    size_t rank = 0;
+    for (size_t w = 0; w < bits_.size(); ++w) {
+      for (uint64_t word = bits_[w]; word != 0; word &= word - 1, ++rank) {
+        if (table_[rank] == kNone) continue;  // erased since packing
+        f(static_cast<WordId>(w * 64 + static_cast<size_t>(__builtin_ctzll(word))), table_[rank]);
+      }
     }
   }
-  size_t MemoryBytes() const { return table_.capacity() * sizeof(uint32_t); }
+  size_t MemoryBytes() const {
+    return table_.capacity() * sizeof(uint32_t) + bits_.capacity() * sizeof(uint64_t) +
+           ranks_.capacity() * sizeof(uint32_t);
+  }
 
  private:
-  std::vector<uint32_t> table_;  // by id; kNone = absent
+  static constexpr size_t kAbsentRank = ~size_t{0};
+  // Position in table_ of id i in the packed form, kAbsentRank when its bit is clear.
+  size_t PackedRank(size_t i) const {
+    const size_t w = i >> 6;
+    if (w >= bits_.size()) return kAbsentRank;
+    const uint64_t bit = uint64_t{1} << (i & 63);
+    if ((bits_[w] & bit) == 0) return kAbsentRank;
+    return ranks_[w] + static_cast<size_t>(__builtin_popcountll(bits_[w] & (bit - 1)));
+  }
+  // Back to the dense form, every present id kept.
+  void Unpack();
+
+  // Dense: slot by id (kNone = absent). Packed: slot by rank (kNone = erased
+  // since packing).
+  std::vector<uint32_t> table_;
+  std::vector<uint64_t> bits_;   // packed only: id i present when bit i is set
+  std::vector<uint32_t> ranks_;  // packed only: set bits in bits_[0, w)
+  bool packed_ = false;
   size_t size_ = 0;
 };
 

@@ -1,6 +1,11 @@
 #include "slam/retrieval/bayes_filter.h"
 
+#include <algorithm>
+#include <cmath>
+#include <map>
 #include <numeric>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -62,6 +67,119 @@ TEST(BayesFilter, FirstUpdateMatchesADenseComputation) {
   EXPECT_NEAR(f.Posterior(2), post2 / total, 1e-6);
   EXPECT_NEAR(Total(f), 1.0, 1e-9);
   EXPECT_EQ(f.Top(1)[0].node, 2);
+}
+
+// A dense transition matrix built from the graph's neighbourhoods (spec §4.2
+// steps 1-3), for comparing the filter's compact columns with.
+std::vector<std::vector<double>> DenseTransitions(const PlaceGraph& g,
+                                                  const std::vector<NodeId>& places) {
+  const std::vector<double> c = BayesFilterOptions().prediction;
+  const double sum_c = std::accumulate(c.begin(), c.end(), 0.0);
+  const double eps = *std::min_element(c.begin(), c.end());
+  const int max_margin = static_cast<int>(c.size()) - 2;
+  std::map<NodeId, size_t> index;
+  for (size_t k = 0; k < places.size(); ++k) index[places[k]] = k;
+  // column[j][i] = P(i | j)
+  std::vector<std::vector<double>> column(places.size(), std::vector<double>(places.size(), 0.0));
+  for (size_t j = 0; j < places.size(); ++j) {
+    double sum = 0.0;
+    for (const NodeMargin& m : g.Neighbourhood(places[j])) {
+      if (m.margin > max_margin || index.count(m.node) == 0) continue;
+      column[j][index[m.node]] += c[m.margin + 1];
+      sum += c[m.margin + 1];
+    }
+    if (sum < sum_c - c[0]) {
+      column[j][j] += sum_c - c[0] - sum;
+      sum = sum_c - c[0];
+    }
+    if (std::abs(sum - (1.0 - c[0])) > 1e-4) {
+      for (double& w : column[j]) {
+        w *= (1.0 - c[0]) / sum;
+        if (w < eps) w = 0.0;
+      }
+    }
+  }
+  return column;
+}
+
+// Hundreds of places with slot gaps (places removed) and loop closures between
+// sessions, so that columns hold hundreds of places and slot steps above 127:
+// the compact columns give the dense model's posterior.
+TEST(BayesFilter, CompactColumnsGiveTheDenseModelsPosterior) {
+  constexpr NodeId kPerSession = 150;
+  PlaceGraph g(16);
+  for (NodeId n = 1; n <= 3 * kPerSession; ++n) {
+    g.AddNode(n, static_cast<int>((n - 1) / kPerSession));
+  }
+  for (NodeId n = 1; n < 3 * kPerSession; ++n) {
+    if (n % kPerSession != 0) g.AddLink(n, n + 1, LinkType::kOdometry);
+  }
+  for (NodeId n = 1; n <= kPerSession; n += 7) {
+    g.AddLink(n, n + kPerSession, LinkType::kLoopClosure);
+    g.AddLink(n + kPerSession, std::min<NodeId>(n + 2 * kPerSession + 3, 3 * kPerSession),
+              LinkType::kLoopClosure);
+  }
+  BayesFilter f(BayesFilterOptions(), &g);
+  for (NodeId n = 1; n <= 3 * kPerSession; ++n) f.AddPlace(n);
+  for (NodeId n = 40; n <= 3 * kPerSession; n += 37) ASSERT_TRUE(f.RemovePlace(n));
+  const std::vector<NodeId> places = f.Places();
+  const std::vector<std::vector<double>> column = DenseTransitions(g, places);
+  // A place's slot is its node id - 1 (added in order, none reused). Some
+  // column must hold two places of one weight with no place of that weight
+  // between them more than 127 slots apart: a step of two varint bytes.
+  NodeId widest_step = 0;
+  for (const auto& col : column) {
+    std::map<double, std::vector<NodeId>> by_weight;
+    for (size_t i = 0; i < col.size(); ++i) {
+      if (col[i] > 0) by_weight[col[i]].push_back(places[i]);
+    }
+    for (const auto& [w, nodes] : by_weight) {
+      for (size_t k = 1; k < nodes.size(); ++k) {
+        widest_step = std::max(widest_step, nodes[k] - nodes[k - 1]);
+      }
+    }
+  }
+  ASSERT_GT(widest_step, 127);
+
+  const BayesFilterOptions options;
+  std::vector<double> posterior(places.size(), 1.0);
+  double virtual_posterior = 1.0;
+  const std::vector<std::pair<NodeId, float>> evidence = {{3, 4.0f}, {160, 2.5f}, {301, 6.0f}};
+  for (const auto& [node, value] : evidence) {
+    const Likelihood likelihood = Peak(node, value, 1.3f);
+    f.Update(likelihood);
+    // The same step, dense (spec §4.3).
+    const double real_mass = std::accumulate(posterior.begin(), posterior.end(), 0.0);
+    const double prior_virtual = options.virtual_place_prior * virtual_posterior +
+                                 options.prediction[0] * real_mass;
+    const double from_virtual =
+        (1.0 - options.virtual_place_prior) / places.size() * virtual_posterior;
+    std::vector<double> prior(places.size(), from_virtual);
+    for (size_t j = 0; j < places.size(); ++j) {
+      for (size_t i = 0; i < places.size(); ++i) prior[i] += column[j][i] * posterior[j];
+    }
+    for (size_t i = 0; i < places.size(); ++i) {
+      if (places[i] == node) prior[i] *= value;
+    }
+    double total = prior_virtual * likelihood.virtual_place;
+    for (double p : prior) total += p;
+    for (size_t i = 0; i < places.size(); ++i) posterior[i] = prior[i] / total;
+    virtual_posterior = prior_virtual * likelihood.virtual_place / total;
+
+    // Columns keep float weights; a place's mass is about 2e-3, so a slot
+    // decoded wrong would be off by far more than this.
+    EXPECT_NEAR(f.VirtualPosterior(), virtual_posterior, 1e-7);
+    for (size_t i = 0; i < places.size(); ++i) {
+      ASSERT_NEAR(f.Posterior(places[i]), posterior[i], 1e-7) << "place " << places[i];
+    }
+  }
+  // Less than half the bytes of one (slot, float weight) pair per entry, as
+  // columns were kept before, even with these short columns' fixed costs.
+  size_t entries = 0;
+  for (const auto& col : column) {
+    entries += std::count_if(col.begin(), col.end(), [](double w) { return w > 0; });
+  }
+  EXPECT_LT(f.TransitionBytes(), entries * (sizeof(uint32_t) + sizeof(float)) / 2);
 }
 
 TEST(BayesFilter, RepeatedEvidenceAccumulatesAndNeighboursShareIt) {
