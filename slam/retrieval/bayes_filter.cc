@@ -126,9 +126,9 @@ void BayesFilter::BuildColumn(uint32_t slot) {
     by_margin_[it->second == slot ? 0 : m.margin + 1].push_back(it->second);
     sum += c[m.margin + 1];
   }
-  std::vector<float> weights(by_margin_.size());
+  // Group g > 0 (margin g - 1) weighs c[g]; the place itself, margin 0, c[1].
+  std::vector<float> weights(c.begin(), c.end());
   weights[0] = static_cast<float>(c[1]);
-  for (int m = 0; m <= max_margin; ++m) weights[m + 1] = static_cast<float>(c[m + 1]);
   const double target = 1.0 - c[0];
   if (sum < sum_weights_ - c[0]) {
     SLAM_CHECK(!by_margin_[0].empty());
